@@ -1,0 +1,113 @@
+#include "core/cloth_body.hpp"
+
+#include <algorithm>
+
+#include "core/check.hpp"
+
+namespace felt {
+
+ClothBody::ClothBody(std::string name, std::shared_ptr<const ClothModel> model, ClothParams params,
+                     std::unique_ptr<Integrator> integrator)
+    : name_(std::move(name)),
+      model_(std::move(model)),
+      params_(params),
+      integrator_(std::move(integrator)) {
+  FELT_CHECK(model_ && integrator_);
+  const std::size_t n = model_->particle_count();
+  state_.x = model_->rest_positions;
+  state_.v.assign(n, Vec3::Zero());
+  inv_mass_.resize(n);
+  for (std::size_t p = 0; p < n; ++p) inv_mass_[p] = 1 / model_->mass[p];
+  external_force_.assign(n, Vec3::Zero());
+  refresh_normals();
+}
+
+void ClothBody::set_integrator(std::unique_ptr<Integrator> integrator) {
+  FELT_CHECK(integrator);
+  integrator_ = std::move(integrator);
+}
+
+void ClothBody::pin(std::uint32_t p) {
+  FELT_CHECK(p < inv_mass_.size());
+  inv_mass_[p] = 0;
+  state_.v[p].setZero();
+}
+
+void ClothBody::unpin(std::uint32_t p) {
+  FELT_CHECK(p < inv_mass_.size());
+  inv_mass_[p] = 1 / model_->mass[p];
+}
+
+void ClothBody::clear_external_forces() {
+  std::fill(external_force_.begin(), external_force_.end(), Vec3::Zero());
+}
+
+void ClothBody::compute_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real /*t*/,
+                               std::span<Vec3> f) const {
+  const ClothModel& model = *model_;
+  for (std::size_t p = 0; p < x.size(); ++p) {
+    f[p] = model.mass[p] * gravity_ - params_.drag * v[p] + external_force_[p];
+  }
+  // damped linear spring, thesis 1 §2: f_i = −[k_s(|l|−r) + k_d (v_i−v_j)·l̂] l̂
+  for (const Spring& s : model.springs) {
+    const SpringParams& sp = params_.spring(s.kind);
+    if (!sp.enabled) continue;
+    const Vec3 d = x[s.i] - x[s.j];
+    const Real length = d.norm();
+    if (length <= Real{1e-12}) continue;  // coincident particles: no direction to push along
+    const Vec3 dir = d / length;
+    const Vec3 fs =
+        -(sp.stiffness * (length - s.rest_length) + sp.damping * (v[s.i] - v[s.j]).dot(dir)) * dir;
+    f[s.i] += fs;
+    f[s.j] -= fs;
+  }
+}
+
+void ClothBody::refresh_normals() {
+  const ClothModel& model = *model_;
+  face_normals_.resize(model.triangles.size());
+  vertex_normals_.assign(model.particle_count(), Vec3::Zero());
+  for (std::size_t t = 0; t < model.triangles.size(); ++t) {
+    const Triangle& tri = model.triangles[t];
+    // the unnormalised cross product weighs each face by its area
+    const Vec3 area_normal =
+        (state_.x[tri[1]] - state_.x[tri[0]]).cross(state_.x[tri[2]] - state_.x[tri[0]]);
+    for (std::uint32_t corner : tri) vertex_normals_[corner] += area_normal;
+    const Real norm = area_normal.norm();
+    face_normals_[t] = norm > 0 ? Vec3(area_normal / norm) : Vec3::Zero();
+  }
+  for (Vec3& n : vertex_normals_) {
+    const Real norm = n.norm();
+    if (norm > 0) n /= norm;
+  }
+}
+
+Real ClothBody::kinetic_energy() const {
+  Real energy = 0;
+  for (std::size_t p = 0; p < state_.size(); ++p) {
+    energy += 0.5 * model_->mass[p] * state_.v[p].squaredNorm();
+  }
+  return energy;
+}
+
+Real ClothBody::elastic_energy() const {
+  Real energy = 0;
+  for (const Spring& s : model_->springs) {
+    const SpringParams& sp = params_.spring(s.kind);
+    if (!sp.enabled) continue;
+    const Real stretch = (state_.x[s.i] - state_.x[s.j]).norm() - s.rest_length;
+    energy += 0.5 * sp.stiffness * stretch * stretch;
+  }
+  return energy;
+}
+
+Real ClothBody::max_strain() const {
+  Real strain = 0;
+  for (const Spring& s : model_->springs) {
+    if (s.kind == SpringKind::kBend || s.rest_length <= 0) continue;
+    strain = std::max(strain, (state_.x[s.i] - state_.x[s.j]).norm() / s.rest_length - 1);
+  }
+  return strain;
+}
+
+}  // namespace felt

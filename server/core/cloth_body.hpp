@@ -1,0 +1,83 @@
+#pragma once
+// A simulated cloth: an immutable ClothModel plus its state, parameters and integrator.
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/cloth_model.hpp"
+#include "core/dynamic_system.hpp"
+#include "core/integrator.hpp"
+#include "core/particle_state.hpp"
+
+namespace felt {
+
+/// Force parameters of a cloth (thesis 1 §2).
+struct ClothParams {
+  std::array<SpringParams, kSpringKindCount> springs;  ///< indexed by SpringKind
+  Real drag = 0;                                       ///< viscous drag k_d: f = −k_d v, N·s/m
+
+  SpringParams& spring(SpringKind kind) { return springs[static_cast<int>(kind)]; }
+  const SpringParams& spring(SpringKind kind) const { return springs[static_cast<int>(kind)]; }
+};
+
+class ClothBody final : public DynamicSystem {
+ public:
+  ClothBody(std::string name, std::shared_ptr<const ClothModel> model, ClothParams params,
+            std::unique_ptr<Integrator> integrator);
+
+  const std::string& name() const { return name_; }
+  const ClothModel& model() const { return *model_; }
+  const std::shared_ptr<const ClothModel>& shared_model() const { return model_; }
+  const ClothParams& params() const { return params_; }
+  const ParticleState& state() const { return state_; }
+  ParticleState& state() { return state_; }
+  Integrator& integrator() { return *integrator_; }
+  const Integrator& integrator() const { return *integrator_; }
+  void set_integrator(std::unique_ptr<Integrator> integrator);
+
+  /// Fixes particle p where it is (inverse mass 0, velocity 0).
+  void pin(std::uint32_t p);
+  void unpin(std::uint32_t p);
+  bool is_pinned(std::uint32_t p) const { return inv_mass_[p] == 0; }
+
+  void set_gravity(const Vec3& gravity) { gravity_ = gravity; }
+
+  /// Adds a force on particle p for the next step only (user and haptic forces).
+  void add_external_force(std::uint32_t p, const Vec3& force) { external_force_[p] += force; }
+  void clear_external_forces();
+
+  /// Recomputes face normals and area-weighted vertex normals from the current positions.
+  void refresh_normals();
+  const std::vector<Vec3>& face_normals() const { return face_normals_; }
+  const std::vector<Vec3>& vertex_normals() const { return vertex_normals_; }
+
+  /// Σ ½ m v² over all particles, J.
+  Real kinetic_energy() const;
+  /// Σ ½ k (|l| − r)² over the enabled springs, J.
+  Real elastic_energy() const;
+  const std::vector<Vec3>& external_forces() const { return external_force_; }
+  const Vec3& gravity() const { return gravity_; }
+  /// Largest relative elongation |l|/r − 1 over the structural and shear springs.
+  Real max_strain() const;
+
+  // DynamicSystem
+  std::span<const Real> inv_mass() const override { return inv_mass_; }
+  void compute_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real t,
+                      std::span<Vec3> f) const override;
+
+ private:
+  std::string name_;
+  std::shared_ptr<const ClothModel> model_;
+  ClothParams params_;
+  std::unique_ptr<Integrator> integrator_;
+  ParticleState state_;
+  std::vector<Real> inv_mass_;
+  Vec3 gravity_ = Vec3::Zero();
+  std::vector<Vec3> external_force_;
+  std::vector<Vec3> face_normals_;
+  std::vector<Vec3> vertex_normals_;
+};
+
+}  // namespace felt

@@ -1,0 +1,23 @@
+#pragma once
+
+#include <span>
+
+#include "core/types.hpp"
+
+namespace felt {
+
+/// What an integrator needs from a body: its masses and its force function. Integrators never
+/// see springs or meshes, so any body (cloth, solid, a test oscillator) can use any of them.
+class DynamicSystem {
+ public:
+  virtual ~DynamicSystem() = default;
+
+  /// Inverse masses; 0 marks a particle that does not move (a pin).
+  virtual std::span<const Real> inv_mass() const = 0;
+
+  /// Writes into `f` the total force on every particle in state (x, v) at time t.
+  virtual void compute_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real t,
+                              std::span<Vec3> f) const = 0;
+};
+
+}  // namespace felt

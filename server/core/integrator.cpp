@@ -1,0 +1,40 @@
+#include "core/integrator.hpp"
+
+#include <array>
+
+#include "core/explicit_integrators.hpp"
+
+namespace felt {
+namespace {
+
+struct Entry {
+  std::string_view name;
+  std::unique_ptr<Integrator> (*make)();
+};
+
+template <typename T>
+std::unique_ptr<Integrator> make_one() {
+  return std::make_unique<T>();
+}
+
+constexpr std::array kIntegrators{
+    Entry{"explicit_euler", &make_one<ExplicitEuler>},
+    Entry{"symplectic_euler", &make_one<SymplecticEuler>},
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_integrator(std::string_view name) {
+  for (const Entry& entry : kIntegrators) {
+    if (entry.name == name) return entry.make();
+  }
+  return nullptr;
+}
+
+std::vector<std::string_view> integrator_names() {
+  std::vector<std::string_view> names;
+  for (const Entry& entry : kIntegrators) names.push_back(entry.name);
+  return names;
+}
+
+}  // namespace felt

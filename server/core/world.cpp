@@ -1,0 +1,73 @@
+#include "core/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace felt {
+
+World::World(WorldSettings settings) : settings_(settings) {}
+
+std::uint32_t World::add_body(ClothBody body) {
+  body.set_gravity(settings_.gravity);
+  bodies_.push_back(std::move(body));
+  return static_cast<std::uint32_t>(bodies_.size() - 1);
+}
+
+StepReport World::step() {
+  StepReport report;
+  for (ClothBody& body : bodies_) {
+    // copy-assignment into equally sized vectors reuses their storage: no allocation
+    backup_.x = body.state().x;
+    backup_.v = body.state().v;
+    const Real energy_before = body.kinetic_energy() + body.elastic_energy();
+    int substeps = 1;
+    bool ok = try_step(body, substeps, energy_before);
+    for (int retry = 0; !ok && retry < settings_.max_substep_doublings; ++retry) {
+      body.state().x = backup_.x;
+      body.state().v = backup_.v;
+      body.integrator().reset();
+      substeps *= 2;
+      ok = try_step(body, substeps, energy_before);
+    }
+    if (ok && substeps > 1) report.flags |= kStepRescued;
+    if (!ok) {
+      body.state().x = backup_.x;
+      for (Vec3& v : body.state().v) v.setZero();
+      body.integrator().reset();
+      report.flags |= kStepUnrecoverable;
+    }
+    report.max_substeps = std::max(report.max_substeps, substeps);
+    body.clear_external_forces();
+    body.refresh_normals();
+  }
+  ++step_count_;
+  // advance by multiplication, not accumulation, so long runs keep an exact clock
+  time_ = static_cast<Real>(step_count_) * settings_.time_step;
+  return report;
+}
+
+bool World::try_step(ClothBody& body, int substeps, Real energy_before) {
+  const Real h = settings_.time_step / substeps;
+  for (int s = 0; s < substeps; ++s) body.integrator().step(body, body.state(), time_ + s * h, h);
+  return healthy(body, energy_before);
+}
+
+bool World::healthy(const ClothBody& body, Real energy_before) const {
+  const ParticleState& state = body.state();
+  const Real max_speed_sq = settings_.max_speed * settings_.max_speed;
+  Real work = 0;  // by gravity and external forces over the step
+  for (std::size_t p = 0; p < state.size(); ++p) {
+    if (!state.x[p].allFinite()) return false;
+    const Real speed_sq = state.v[p].squaredNorm();
+    if (!std::isfinite(speed_sq) || speed_sq > max_speed_sq) return false;
+    const Vec3 force = body.model().mass[p] * body.gravity() + body.external_forces()[p];
+    work += force.dot(state.x[p] - backup_.x[p]);
+  }
+  const Real energy_after = body.kinetic_energy() + body.elastic_energy();
+  const Real growth = settings_.max_energy_growth;
+  // the floor keeps rounding noise of a body at rest from counting as growth
+  constexpr Real kEnergyFloor = 1e-9;
+  return energy_after <= growth * (energy_before + std::max(work, Real{0})) + kEnergyFloor;
+}
+
+}  // namespace felt
