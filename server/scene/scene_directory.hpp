@@ -1,0 +1,27 @@
+#pragma once
+// Maps scene names from clients to files, never outside the scene directory.
+
+#include <expected>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace felt {
+
+class SceneDirectory {
+ public:
+  explicit SceneDirectory(std::filesystem::path root);
+
+  /// The file of scene `name` ("default" -> ROOT/default.json, "thesis/three_cubes" ->
+  /// ROOT/thesis/three_cubes.json). Names are letters, digits, '_', '-' and '/' between
+  /// segments; anything else, or a file that resolves (through links) outside the root, is an
+  /// error with a message fit for the client.
+  std::expected<std::filesystem::path, std::string> resolve(std::string_view name) const;
+
+  const std::filesystem::path& root() const { return root_; }
+
+ private:
+  std::filesystem::path root_;
+};
+
+}  // namespace felt

@@ -1,0 +1,287 @@
+#include "scene/scene_loader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/cloth_grid.hpp"
+
+namespace felt {
+namespace {
+
+using nlohmann::json;
+
+// Thrown inside the loader only; load_scene turns it into a SceneError.
+struct Failure {
+  SceneError error;
+};
+
+[[noreturn]] void fail(const std::string& path, std::string message) {
+  throw Failure{{path, std::move(message)}};
+}
+
+std::string child(const std::string& path, std::string_view key) {
+  return path.empty() ? std::string(key) : path + "." + std::string(key);
+}
+
+std::string element(const std::string& path, std::size_t index) {
+  return path + "[" + std::to_string(index) + "]";
+}
+
+/// A JSON object being read, with its path for error messages.
+class ObjectReader {
+ public:
+  ObjectReader(const json& value, std::string path, std::initializer_list<std::string_view> keys)
+      : value_(value), path_(std::move(path)) {
+    if (!value_.is_object()) fail(path_, "must be an object");
+    for (const auto& [key, unused] : value_.items()) {
+      if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
+        fail(child(path_, key), "unknown key");
+      }
+    }
+  }
+
+  const std::string& path() const { return path_; }
+  bool has(std::string_view key) const { return value_.contains(key); }
+  const json& at(std::string_view key) const { return value_.at(key); }
+  std::string path_of(std::string_view key) const { return child(path_, key); }
+
+  Real number(std::string_view key, Real fallback) const {
+    if (!has(key)) return fallback;
+    const json& v = at(key);
+    if (!v.is_number()) fail(path_of(key), "must be a number");
+    const Real x = v.get<Real>();
+    if (!std::isfinite(x)) fail(path_of(key), "must be finite");
+    return x;
+  }
+
+  Real positive(std::string_view key, Real fallback) const {
+    const Real x = number(key, fallback);
+    if (!(x > 0)) fail(path_of(key), "must be > 0");
+    return x;
+  }
+
+  Real non_negative(std::string_view key, Real fallback) const {
+    const Real x = number(key, fallback);
+    if (x < 0) fail(path_of(key), "must be >= 0");
+    return x;
+  }
+
+  std::uint32_t count(std::string_view key, std::uint32_t fallback, std::uint32_t min,
+                      std::uint32_t max) const {
+    if (!has(key)) return fallback;
+    const json& v = at(key);
+    if (!v.is_number_integer()) fail(path_of(key), "must be an integer");
+    const auto n = v.get<std::int64_t>();
+    if (n < min || n > max) {
+      fail(path_of(key), "must be between " + std::to_string(min) + " and " + std::to_string(max));
+    }
+    return static_cast<std::uint32_t>(n);
+  }
+
+  bool boolean(std::string_view key, bool fallback) const {
+    if (!has(key)) return fallback;
+    if (!at(key).is_boolean()) fail(path_of(key), "must be true or false");
+    return at(key).get<bool>();
+  }
+
+  std::string string(std::string_view key, std::string fallback) const {
+    if (!has(key)) return fallback;
+    if (!at(key).is_string()) fail(path_of(key), "must be a string");
+    return at(key).get<std::string>();
+  }
+
+  Vec3 vec3(std::string_view key, const Vec3& fallback) const {
+    if (!has(key)) return fallback;
+    const json& v = at(key);
+    if (!v.is_array() || v.size() != 3) fail(path_of(key), "must be an array of 3 numbers");
+    Vec3 out;
+    for (int i = 0; i < 3; ++i) {
+      if (!v[i].is_number() || !std::isfinite(v[i].get<Real>())) {
+        fail(element(path_of(key), i), "must be a finite number");
+      }
+      out[i] = v[i].get<Real>();
+    }
+    return out;
+  }
+
+ private:
+  const json& value_;
+  std::string path_;
+};
+
+// Particles per body are capped so that a typo cannot ask for terabytes.
+constexpr std::uint32_t kMaxGridSide = 2048;
+
+GridClothSpec read_grid(const ObjectReader& reader) {
+  const ObjectReader grid(reader.at("grid"), reader.path_of("grid"),
+                          {"width", "height", "nx", "ny", "center", "plane"});
+  GridClothSpec spec;
+  spec.width = grid.positive("width", 1);
+  spec.height = grid.positive("height", 1);
+  spec.nx = grid.count("nx", 20, 2, kMaxGridSide);
+  spec.ny = grid.count("ny", 20, 2, kMaxGridSide);
+  spec.center = grid.vec3("center", Vec3::Zero());
+  const std::string plane = grid.string("plane", "xy");
+  if (plane == "xy") {
+    spec.plane = GridClothSpec::Plane::kXY;
+  } else if (plane == "xz") {
+    spec.plane = GridClothSpec::Plane::kXZ;
+  } else {
+    fail(grid.path_of("plane"), "must be \"xy\" (hanging) or \"xz\" (lying)");
+  }
+  return spec;
+}
+
+ClothParams read_springs(const ObjectReader& body) {
+  // defaults give a light cloth that is stable with symplectic Euler at h = 1 ms
+  ClothParams params;
+  params.spring(SpringKind::kStructural) = {true, 200, 0.05};
+  params.spring(SpringKind::kShear) = {true, 50, 0.02};
+  params.spring(SpringKind::kBend) = {true, 5, 0.005};
+  params.drag = body.non_negative("drag", 0.005);
+  if (!body.has("springs")) return params;
+
+  const ObjectReader springs(body.at("springs"), body.path_of("springs"),
+                             {"structural", "shear", "bend"});
+  const std::pair<std::string_view, SpringKind> kinds[] = {{"structural", SpringKind::kStructural},
+                                                           {"shear", SpringKind::kShear},
+                                                           {"bend", SpringKind::kBend}};
+  for (const auto& [key, kind] : kinds) {
+    if (!springs.has(key)) continue;
+    const ObjectReader spring(springs.at(key), springs.path_of(key),
+                              {"stiffness", "damping", "enabled"});
+    SpringParams& sp = params.spring(kind);
+    sp.stiffness = spring.positive("stiffness", sp.stiffness);
+    sp.damping = spring.non_negative("damping", sp.damping);
+    sp.enabled = spring.boolean("enabled", sp.enabled);
+  }
+  return params;
+}
+
+std::vector<std::uint32_t> read_pins(const ObjectReader& body, const GridClothSpec& spec) {
+  if (!body.has("pin")) return grid_pin_indices(spec, GridPinPreset::kTopCorners);
+  const json& pin = body.at("pin");
+  const std::string path = body.path_of("pin");
+  if (pin.is_string()) {
+    const std::pair<std::string_view, GridPinPreset> presets[] = {
+        {"none", GridPinPreset::kNone},
+        {"four_corners", GridPinPreset::kFourCorners},
+        {"top_corners", GridPinPreset::kTopCorners},
+        {"top_row", GridPinPreset::kTopRow}};
+    for (const auto& [name, preset] : presets) {
+      if (pin.get<std::string>() == name) return grid_pin_indices(spec, preset);
+    }
+    fail(path, "must be none, four_corners, top_corners, top_row or a list of particle indices");
+  }
+  if (!pin.is_array()) fail(path, "must be a preset name or a list of particle indices");
+  const std::size_t n = std::size_t{spec.nx} * spec.ny;
+  std::vector<std::uint32_t> indices;
+  for (std::size_t i = 0; i < pin.size(); ++i) {
+    if (!pin[i].is_number_integer() || pin[i].get<std::int64_t>() < 0 ||
+        pin[i].get<std::uint64_t>() >= n) {
+      fail(element(path, i), "must be a particle index below " + std::to_string(n));
+    }
+    indices.push_back(pin[i].get<std::uint32_t>());
+  }
+  return indices;
+}
+
+ClothBody read_cloth(const ObjectReader& body, std::size_t index) {
+  if (!body.has("grid")) fail(body.path_of("grid"), "is required for a cloth");
+  const GridClothSpec spec = [&] {
+    GridClothSpec s = read_grid(body);
+    s.total_mass = body.positive("mass", 1);
+    return s;
+  }();
+  const std::string integrator_name = body.string("integrator", "symplectic_euler");
+  auto integrator = make_integrator(integrator_name);
+  if (!integrator) {
+    std::string known;
+    for (std::string_view name : integrator_names())
+      known += (known.empty() ? "" : ", ") + std::string(name);
+    fail(body.path_of("integrator"),
+         "unknown integrator \"" + integrator_name + "\" (known: " + known + ")");
+  }
+  ClothBody cloth(body.string("name", "cloth" + std::to_string(index)),
+                  std::make_shared<const ClothModel>(make_grid_cloth(spec)), read_springs(body),
+                  std::move(integrator));
+  for (std::uint32_t p : read_pins(body, spec)) cloth.pin(p);
+  return cloth;
+}
+
+Scene read_scene(const json& document) {
+  const ObjectReader root(document, "",
+                          {"name", "time_step", "gravity", "max_speed", "haptics", "bodies"});
+  WorldSettings settings;
+  settings.time_step = root.positive("time_step", settings.time_step);
+  if (settings.time_step > 0.1) fail(root.path_of("time_step"), "must be at most 0.1 s");
+  settings.gravity = root.vec3("gravity", settings.gravity);
+  settings.max_speed = root.positive("max_speed", settings.max_speed);
+
+  Scene scene{root.string("name", "unnamed"), World(settings), ProxySettings{}};
+  if (root.has("haptics")) {
+    const ObjectReader haptics(root.at("haptics"), root.path_of("haptics"),
+                               {"proxy_radius", "stiffness", "max_force"});
+    scene.haptics.radius = haptics.positive("proxy_radius", scene.haptics.radius);
+    scene.haptics.stiffness = haptics.positive("stiffness", scene.haptics.stiffness);
+    scene.haptics.max_force = haptics.positive("max_force", scene.haptics.max_force);
+  }
+
+  if (!root.has("bodies")) return scene;
+  const json& bodies = root.at("bodies");
+  if (!bodies.is_array()) fail("bodies", "must be an array");
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const ObjectReader body(
+        bodies[i], element("bodies", i),
+        {"name", "type", "grid", "mass", "springs", "drag", "integrator", "pin"});
+    const std::string type = body.string("type", "");
+    if (type != "cloth") fail(body.path_of("type"), "must be \"cloth\"");
+    scene.world.add_body(read_cloth(body, i));
+  }
+  return scene;
+}
+
+}  // namespace
+
+std::expected<Scene, SceneError> load_scene(const json& document) {
+  try {
+    return read_scene(document);
+  } catch (const Failure& failure) {
+    return std::unexpected(failure.error);
+  }
+}
+
+std::expected<json, SceneError> parse_json(std::string_view text, const std::string& source) {
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& e) {
+    return std::unexpected(SceneError{"", source + " is not valid JSON: " + e.what()});
+  }
+}
+
+std::expected<Scene, SceneError> load_scene_text(std::string_view text) {
+  const auto document = parse_json(text, "the scene");
+  if (!document) return std::unexpected(document.error());
+  return load_scene(*document);
+}
+
+std::expected<json, SceneError> read_scene_json(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) return std::unexpected(SceneError{"", "cannot open " + file.string()});
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_json(text.str(), file.string());
+}
+
+std::expected<Scene, SceneError> load_scene_file(const std::filesystem::path& file) {
+  const auto document = read_scene_json(file);
+  if (!document) return std::unexpected(document.error());
+  return load_scene(*document);
+}
+
+}  // namespace felt

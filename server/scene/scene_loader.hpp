@@ -1,0 +1,35 @@
+#pragma once
+// Scene JSON -> core objects (docs/scene-format.md). Every mistake is reported with the JSON
+// path of the bad value: "bodies[2].springs.shear.stiffness: must be > 0".
+
+#include <expected>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "scene/scene.hpp"
+
+namespace felt {
+
+/// Why a scene did not load: where (a JSON path, empty for the whole document) and what.
+struct SceneError {
+  std::string path;
+  std::string message;
+
+  std::string what() const { return path.empty() ? message : path + ": " + message; }
+};
+
+std::expected<Scene, SceneError> load_scene(const nlohmann::json& document);
+std::expected<Scene, SceneError> load_scene_text(std::string_view text);
+std::expected<Scene, SceneError> load_scene_file(const std::filesystem::path& file);
+
+/// Parses JSON text; `source` names it in the error.
+std::expected<nlohmann::json, SceneError> parse_json(std::string_view text,
+                                                     const std::string& source);
+
+/// Reads a scene file as JSON without building it (for --set overrides before loading).
+std::expected<nlohmann::json, SceneError> read_scene_json(const std::filesystem::path& file);
+
+}  // namespace felt
