@@ -1,0 +1,49 @@
+#include "runtime/reaction_accumulator.hpp"
+
+namespace felt {
+
+void ReactionAccumulator::add(std::uint64_t proxy_key, std::uint32_t body_id,
+                              const Triangle& corners, const Vec3& barycentric, const Vec3& force) {
+  std::lock_guard lock(mutex_);
+  ProxyReaction& reaction = reactions_[proxy_key];
+  ++reaction.samples;
+  for (int corner = 0; corner < 3; ++corner) {
+    const std::uint32_t particle = corners[corner];
+    const Vec3 share = barycentric[corner] * force;
+    bool merged = false;
+    for (ParticleForce& pf : reaction.forces) {
+      if (pf.body_id == body_id && pf.particle == particle) {
+        pf.force += share;
+        merged = true;
+        break;
+      }
+    }
+    if (!merged && reaction.forces.size() < kMaxParticlesPerProxy) {
+      reaction.forces.push_back({body_id, particle, share});
+    }
+  }
+}
+
+void ReactionAccumulator::forget(std::uint64_t proxy_key) {
+  std::lock_guard lock(mutex_);
+  reactions_.erase(proxy_key);
+}
+
+void ReactionAccumulator::apply_and_clear(World& world) {
+  std::lock_guard lock(mutex_);
+  for (auto& [key, reaction] : reactions_) {
+    if (reaction.samples == 0) continue;
+    const Real weight = Real{1} / reaction.samples;
+    for (const ParticleForce& pf : reaction.forces) {
+      if (pf.body_id >= world.bodies().size()) continue;
+      // ids come from a snapshot, so check them against the world they are applied to
+      ClothBody& body = world.bodies()[pf.body_id];
+      if (pf.particle >= body.model().particle_count()) continue;
+      body.add_external_force(pf.particle, weight * pf.force);
+    }
+    reaction.forces.clear();
+    reaction.samples = 0;
+  }
+}
+
+}  // namespace felt

@@ -1,0 +1,46 @@
+#pragma once
+// Forces that haptic proxies exert back on the bodies they touch. Proxies report at their own
+// rate from any thread; the physics thread applies, once per step, each proxy's mean force
+// since the previous step (DESIGN: reaction averaged over each physics step).
+
+#include <cstdint>
+#include <mutex>
+#include <unordered_map>
+#include <vector>
+
+#include "core/world.hpp"
+
+namespace felt {
+
+class ReactionAccumulator {
+ public:
+  /// Records that proxy `proxy_key` pushes `force` onto the triangle with particles `corners`
+  /// of body `body_id`, at the point with barycentric coordinates `barycentric`.
+  void add(std::uint64_t proxy_key, std::uint32_t body_id, const Triangle& corners,
+           const Vec3& barycentric, const Vec3& force);
+
+  /// Drops a proxy that was closed.
+  void forget(std::uint64_t proxy_key);
+
+  /// Applies each proxy's mean force as external forces on the bodies, then forgets them.
+  /// Called by the physics thread only.
+  void apply_and_clear(World& world);
+
+ private:
+  struct ParticleForce {
+    std::uint32_t body_id;
+    std::uint32_t particle;
+    Vec3 force;
+  };
+  struct ProxyReaction {
+    std::vector<ParticleForce> forces;  ///< summed per particle
+    std::uint32_t samples = 0;
+  };
+  // bounds the memory a proxy can pin between two steps
+  static constexpr std::size_t kMaxParticlesPerProxy = 96;
+
+  std::mutex mutex_;
+  std::unordered_map<std::uint64_t, ProxyReaction> reactions_;
+};
+
+}  // namespace felt

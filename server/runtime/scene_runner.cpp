@@ -1,0 +1,128 @@
+#include "runtime/scene_runner.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+namespace felt {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Seconds = std::chrono::duration<double>;
+
+// Lagging further than this behind the wall clock re-synchronises instead of catching up, so a
+// slow scene runs slower than real time rather than stepping in bursts.
+constexpr double kMaxLagSeconds = 0.1;
+
+}  // namespace
+
+SceneRunner::SceneRunner(Scene scene)
+    : scene_(std::move(scene)), name_(scene_.name), haptics_(scene_.haptics) {
+  const auto& bodies = scene_.world.bodies();
+  for (std::uint32_t id = 0; id < bodies.size(); ++id) {
+    bodies_.push_back({id, bodies[id].name(), "cloth",
+                       static_cast<std::uint32_t>(bodies[id].model().particle_count()),
+                       static_cast<std::uint32_t>(bodies[id].model().triangles.size())});
+  }
+  publish();
+}
+
+SceneRunner::~SceneRunner() {
+  stop();
+}
+
+void SceneRunner::start() {
+  if (thread_.joinable()) return;
+  thread_ = std::jthread([this](std::stop_token stop) { run(stop); });
+}
+
+void SceneRunner::stop() {
+  if (!thread_.joinable()) return;
+  thread_.request_stop();
+  wake_.notify_all();
+  thread_.join();
+}
+
+ProxyContact SceneRunner::touch(std::uint64_t proxy_key, const Vec3& position) {
+  const auto snapshot = latest();
+  ProxyContact contact = solve_proxy_contact(*snapshot, haptics_, position);
+  if (contact.in_contact) {
+    const BodySnapshot& body = snapshot->bodies[contact.body_id];
+    reactions_.add(proxy_key, contact.body_id, body.triangles()[contact.triangle],
+                   contact.barycentric, -contact.force);
+  }
+  haptic_updates_.fetch_add(1, std::memory_order_relaxed);
+  return contact;
+}
+
+RunnerStats SceneRunner::stats() const {
+  std::lock_guard lock(stats_mutex_);
+  RunnerStats stats = stats_;
+  stats.haptic_updates = haptic_updates_.load(std::memory_order_relaxed);
+  return stats;
+}
+
+void SceneRunner::publish() {
+  latest_.store(make_snapshot(scene_.world));
+}
+
+void SceneRunner::run(std::stop_token stop) {
+  World& world = scene_.world;
+  const double h = world.settings().time_step;
+  // simulated time = wall time since `origin` (shifted forward whenever we re-synchronise)
+  Clock::time_point origin =
+      Clock::now() - std::chrono::duration_cast<Clock::duration>(Seconds(world.time()));
+  Clock::time_point window_start = Clock::now();
+  double window_sim_start = world.time();
+  double window_step_seconds = 0;
+  std::uint64_t window_steps = 0;
+
+  while (!stop.stop_requested()) {
+    const Clock::time_point now = Clock::now();
+    double lag = Seconds(now - origin).count() - world.time();
+    if (lag > kMaxLagSeconds) {
+      origin += std::chrono::duration_cast<Clock::duration>(Seconds(lag - h));
+      lag = h;
+    }
+    bool stepped = false;
+    std::uint64_t rescued = 0, unrecoverable = 0;
+    while (lag >= h && !stop.stop_requested()) {
+      const Clock::time_point step_start = Clock::now();
+      commands_.apply_all(scene_);
+      reactions_.apply_and_clear(world);
+      const StepReport report = world.step();
+      rescued += (report.flags & kStepRescued) ? 1 : 0;
+      unrecoverable += (report.flags & kStepUnrecoverable) ? 1 : 0;
+      window_step_seconds += Seconds(Clock::now() - step_start).count();
+      ++window_steps;
+      lag -= h;
+      stepped = true;
+    }
+    if (stepped) publish();
+
+    const Clock::time_point after = Clock::now();
+    {
+      std::lock_guard lock(stats_mutex_);
+      stats_.steps = world.step_count();
+      stats_.sim_time = world.time();
+      stats_.rescued_steps += rescued;
+      stats_.unrecoverable_steps += unrecoverable;
+      const double window = Seconds(after - window_start).count();
+      if (window >= 1.0) {
+        stats_.real_time_factor = (world.time() - window_sim_start) / window;
+        stats_.ms_per_step = window_steps ? 1e3 * window_step_seconds / window_steps : 0;
+        window_start = after;
+        window_sim_start = world.time();
+        window_step_seconds = 0;
+        window_steps = 0;
+      }
+    }
+
+    // sleep until the next step is due, or until stop() wakes us
+    const auto due =
+        origin + std::chrono::duration_cast<Clock::duration>(Seconds(world.time() + h));
+    std::unique_lock lock(wake_mutex_);
+    wake_.wait_until(lock, stop, due, [] { return false; });
+  }
+}
+
+}  // namespace felt
