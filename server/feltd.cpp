@@ -1,0 +1,208 @@
+// feltd: the Felt daemon (`serve`) and the headless batch runner (`run`).
+
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <boost/asio.hpp>
+#include <nlohmann/json.hpp>
+
+#include "net/server.hpp"
+#include "runtime/batch_run.hpp"
+#include "scene/scene_loader.hpp"
+#include "scene/scene_overrides.hpp"
+#include "wire/host_port.hpp"
+
+namespace {
+
+namespace asio = boost::asio;
+using felt::SceneId;
+
+struct ServeOptions {
+  std::string listen = "127.0.0.1:7450";
+  std::string scene_dir = "scenes";
+  std::vector<std::string> scenes;
+  bool status = false;
+  std::string token;
+};
+
+struct RunOptions {
+  std::string scene;
+  std::uint64_t steps = 0;
+  std::vector<std::string> overrides;
+  std::string stats_json;
+};
+
+/// Prints one status line a second for the first scene: what `scripts/run` shows.
+void print_status(felt::SceneRegistry& scenes, SceneId scene, felt::net::Server& server,
+                  std::uint64_t& last_haptic_updates) {
+  const auto runner = scenes.find(scene);
+  if (!runner) return;
+  const felt::RunnerStats stats = runner->stats();
+  std::printf("sim %9.3f s  rtf %5.2f  %7.3f ms/step  clients %zu  haptic %6llu/s\n",
+              stats.sim_time, stats.real_time_factor, stats.ms_per_step, server.client_count(),
+              static_cast<unsigned long long>(stats.haptic_updates - last_haptic_updates));
+  std::fflush(stdout);
+  last_haptic_updates = stats.haptic_updates;
+}
+
+int serve(const ServeOptions& options) {
+  const auto address = felt::wire::parse_host_port(options.listen);
+  if (!address) {
+    std::cerr << "feltd: --listen: " << address.error() << "\n";
+    return 2;
+  }
+  felt::SceneRegistry scenes;
+  felt::net::ServerContext context{
+      scenes, felt::SceneDirectory(options.scene_dir), {}, FELT_VERSION};
+  context.options.token = options.token;
+  for (const std::string& file : options.scenes) {
+    auto scene = felt::load_scene_file(file);
+    if (!scene) {
+      std::cerr << "feltd: " << file << ": " << scene.error().what() << "\n";
+      return 2;
+    }
+    auto runner = std::make_shared<felt::SceneRunner>(std::move(*scene));
+    runner->start();
+    const SceneId id = scenes.add(std::move(runner));
+    if (context.default_scene == 0) context.default_scene = id;
+  }
+
+  asio::io_context io;
+  felt::net::Server server(io, context);
+  const auto endpoint = server.listen(address->host, address->port);
+  if (!endpoint) {
+    std::cerr << "feltd: " << endpoint.error() << "\n";
+    scenes.stop_all();
+    return 1;
+  }
+  const auto ip = endpoint->address();
+  std::printf("listening on %s:%u\n",
+              ip.is_v6() ? ("[" + ip.to_string() + "]").c_str() : ip.to_string().c_str(),
+              static_cast<unsigned>(endpoint->port()));
+  std::fflush(stdout);
+
+  asio::steady_timer status_timer(io);
+  std::uint64_t last_haptic_updates = 0;
+  std::function<void()> schedule_status = [&] {
+    status_timer.expires_after(std::chrono::seconds(1));
+    status_timer.async_wait([&](const boost::system::error_code& ec) {
+      if (ec) return;
+      print_status(scenes, context.default_scene, server, last_haptic_updates);
+      schedule_status();
+    });
+  };
+  if (options.status) schedule_status();
+
+  // SIGINT/SIGTERM: stop accepting, close the sessions, finish the current steps, exit 0
+  asio::signal_set signals(io, SIGINT, SIGTERM);
+  signals.async_wait([&](const boost::system::error_code& ec, int) {
+    if (ec) return;
+    status_timer.cancel();
+    server.shutdown();
+    scenes.stop_all();
+    io.stop();
+  });
+  io.run();
+  scenes.stop_all();
+  return 0;
+}
+
+nlohmann::json stats_to_json(const felt::BatchRunStats& stats) {
+  nlohmann::json bodies = nlohmann::json::array();
+  for (const felt::BodyRunStats& body : stats.bodies) {
+    bodies.push_back({{"name", body.name},
+                      {"particles", body.particles},
+                      {"edges", body.edges},
+                      {"triangles", body.triangles},
+                      {"tets", body.tets},
+                      {"kinetic_energy", body.kinetic_energy},
+                      {"max_strain", body.max_strain}});
+  }
+  return {{"steps", stats.steps},
+          {"sim_time", stats.sim_time},
+          {"wall_seconds", stats.wall_seconds},
+          {"ms_per_step", stats.ms_per_step},
+          {"nonfinite", stats.nonfinite},
+          {"rescued_steps", stats.rescued_steps},
+          {"unrecoverable_steps", stats.unrecoverable_steps},
+          {"bodies", bodies}};
+}
+
+int run(const RunOptions& options) {
+  auto document = felt::read_scene_json(options.scene);
+  if (!document) {
+    std::cerr << "feltd: " << document.error().what() << "\n";
+    return 2;
+  }
+  for (const std::string& assignment : options.overrides) {
+    if (auto applied = felt::apply_override(*document, assignment); !applied) {
+      std::cerr << "feltd: --set " << assignment << ": " << applied.error() << "\n";
+      return 2;
+    }
+  }
+  auto scene = felt::load_scene(*document);
+  if (!scene) {
+    std::cerr << "feltd: " << options.scene << ": " << scene.error().what() << "\n";
+    return 2;
+  }
+  const felt::BatchRunStats stats = felt::run_batch(*scene, options.steps);
+  const nlohmann::json json = stats_to_json(stats);
+  std::printf("%llu steps, sim %.4f s, wall %.3f s, %.4f ms/step%s\n",
+              static_cast<unsigned long long>(stats.steps), stats.sim_time, stats.wall_seconds,
+              stats.ms_per_step, stats.nonfinite ? ", NON-FINITE STATE" : "");
+  if (!options.stats_json.empty()) {
+    std::ofstream out(options.stats_json);
+    out << json.dump(2) << "\n";
+    if (!out) {
+      std::cerr << "feltd: cannot write " << options.stats_json << "\n";
+      return 1;
+    }
+  }
+  return stats.nonfinite ? 3 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"feltd " FELT_VERSION " - simulation service for touching deformable things"};
+  app.require_subcommand(1);
+
+  ServeOptions serve_options;
+  if (const char* token = std::getenv("FELT_TOKEN")) serve_options.token = token;
+  CLI::App* serve_cmd = app.add_subcommand("serve", "Serve scenes over TCP (protocol felt.v1)");
+  serve_cmd
+      ->add_option("--listen", serve_options.listen, "HOST:PORT to listen on; port 0 picks one")
+      ->capture_default_str();
+  serve_cmd
+      ->add_option("--scene-dir", serve_options.scene_dir,
+                   "Directory clients load scenes from by name")
+      ->capture_default_str();
+  serve_cmd
+      ->add_option("--scene", serve_options.scenes,
+                   "Scene file to load at start; the first is the one new clients join")
+      ->check(CLI::ExistingFile);
+  serve_cmd->add_flag("--status", serve_options.status, "Print a status line every second");
+  serve_cmd->add_option("--token", serve_options.token,
+                        "Shared secret every Hello must carry (default: $FELT_TOKEN)");
+
+  RunOptions run_options;
+  CLI::App* run_cmd = app.add_subcommand("run", "Step a scene headless, without a network");
+  run_cmd->add_option("scene", run_options.scene, "Scene JSON file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  run_cmd->add_option("--steps", run_options.steps, "Number of steps")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  run_cmd->add_option(
+      "--set", run_options.overrides,
+      "KEY=VALUE override, KEY a dotted path (bodies.0.integrator), VALUE JSON or a string");
+  run_cmd->add_option("--stats-json", run_options.stats_json, "Write run statistics to this file");
+
+  CLI11_PARSE(app, argc, argv);
+  if (serve_cmd->parsed()) return serve(serve_options);
+  return run(run_options);
+}

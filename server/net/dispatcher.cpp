@@ -1,0 +1,184 @@
+#include "net/dispatcher.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "runtime/scene_runner.hpp"
+#include "scene/scene_loader.hpp"
+
+namespace felt::net {
+namespace {
+
+namespace v1 = felt::v1;
+using v1::ClientMessage;
+using v1::ServerMessage;
+
+std::uint64_t steady_ns() {
+  return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                        std::chrono::steady_clock::now().time_since_epoch())
+                                        .count());
+}
+
+void put_vec3(const Vec3& v, v1::Vec3& out) {
+  out.set_x(v.x());
+  out.set_y(v.y());
+  out.set_z(v.z());
+}
+
+// Compares without an early exit, so the time taken does not reveal how much of a guess was
+// right.
+bool tokens_equal(const std::string& expected, const std::string& given) {
+  unsigned char diff = expected.size() == given.size() ? 0 : 1;
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    diff |= static_cast<unsigned char>(expected[i] ^ (i < given.size() ? given[i] : 0));
+  }
+  return diff == 0;
+}
+
+void handle_hello(Session& session, std::uint64_t request_id, const v1::Hello& hello) {
+  const ServerContext& context = session.context();
+  if (hello.protocol_version() != kProtocolVersion) {
+    session.send_error(request_id, v1::ERROR_CODE_UNSUPPORTED_VERSION,
+                       "this server speaks protocol version " + std::to_string(kProtocolVersion) +
+                           ", not " + std::to_string(hello.protocol_version()));
+    return;
+  }
+  if (!context.options.token.empty() && !tokens_equal(context.options.token, hello.token())) {
+    session.send_error(request_id, v1::ERROR_CODE_UNAUTHORIZED, "wrong or missing token");
+    return;
+  }
+  session.set_greeted();
+  ServerMessage reply;
+  reply.set_request_id(request_id);
+  v1::Welcome* welcome = reply.mutable_welcome();
+  welcome->set_protocol_version(kProtocolVersion);
+  welcome->set_server_version(context.server_version);
+  for (const char* capability : {"scenes.load", "frames.float32", "haptics.proxy"}) {
+    welcome->add_capabilities(capability);
+  }
+  welcome->set_scene_id(session.scene_id());
+  session.send(reply);
+}
+
+void handle_load_scene(Session& session, std::uint64_t request_id, const v1::LoadScene& load) {
+  ServerContext& context = session.context();
+  std::expected<Scene, SceneError> scene = std::unexpected(SceneError{"", "no scene given"});
+  switch (load.source_case()) {
+    case v1::LoadScene::kName: {
+      const auto file = context.scene_directory.resolve(load.name());
+      if (!file) {
+        session.send_error(request_id, v1::ERROR_CODE_NOT_FOUND, file.error());
+        return;
+      }
+      scene = load_scene_file(*file);
+      break;
+    }
+    case v1::LoadScene::kJson:
+      scene = load_scene_text(load.json());
+      break;
+    case v1::LoadScene::SOURCE_NOT_SET:
+      session.send_error(request_id, v1::ERROR_CODE_BAD_REQUEST, "LoadScene needs a name or json");
+      return;
+  }
+  if (!scene) {
+    session.send_error(request_id, v1::ERROR_CODE_BAD_SCENE, scene.error().what());
+    return;
+  }
+  auto runner = std::make_shared<SceneRunner>(std::move(*scene));
+  runner->start();
+  const SceneId id = context.scenes.add(runner);
+  session.join(id, runner);
+
+  ServerMessage reply;
+  reply.set_request_id(request_id);
+  v1::SceneLoaded* loaded = reply.mutable_scene_loaded();
+  loaded->set_scene_id(id);
+  loaded->set_name(runner->name());
+  for (const BodyInfo& body : runner->bodies()) {
+    v1::BodyInfo* info = loaded->add_bodies();
+    info->set_body_id(body.body_id);
+    info->set_name(body.name);
+    info->set_kind(body.kind);
+    info->set_particles(body.particles);
+    info->set_triangles(body.triangles);
+  }
+  session.send(reply);
+}
+
+void handle_subscribe(Session& session, std::uint64_t request_id, const v1::SubscribeFrames& sub) {
+  const ServerOptions& options = session.context().options;
+  if (!std::isfinite(sub.max_rate_hz()) || sub.max_rate_hz() < 0) {
+    session.send_error(request_id, v1::ERROR_CODE_BAD_REQUEST, "max_rate_hz must be >= 0");
+    return;
+  }
+  const double rate = sub.max_rate_hz() == 0
+                          ? options.default_frame_rate_hz
+                          : std::min(sub.max_rate_hz(), options.max_frame_rate_hz);
+  session.subscribe_frames(rate, sub.normals());
+  ServerMessage reply;
+  reply.set_request_id(request_id);
+  reply.mutable_subscribed()->set_scene_id(session.scene_id());
+  reply.mutable_subscribed()->set_rate_hz(rate);
+  session.send(reply);
+}
+
+void handle_proxy_update(Session& session, std::uint64_t request_id,
+                         const v1::ProxyUpdate& update) {
+  const std::uint64_t received = steady_ns();
+  const Vec3 position(update.position().x(), update.position().y(), update.position().z());
+  if (!update.has_position() || !position.allFinite()) {
+    session.send_error(request_id, v1::ERROR_CODE_BAD_REQUEST,
+                       "position must be three finite numbers");
+    return;
+  }
+  const ProxyContact contact =
+      session.scene()->touch(session.proxy_key(update.proxy_id()), position);
+
+  ServerMessage reply;
+  reply.set_request_id(request_id);
+  v1::ForceUpdate* force = reply.mutable_force_update();
+  force->set_proxy_id(update.proxy_id());
+  put_vec3(contact.force, *force->mutable_force());
+  put_vec3(contact.contact_point, *force->mutable_contact_point());
+  force->set_in_contact(contact.in_contact);
+  force->set_body_id(contact.body_id);
+  force->set_triangle(contact.triangle);
+  force->set_client_time_us(update.client_time_us());
+  force->set_server_receive_ns(received);
+  force->set_server_send_ns(steady_ns());
+  session.send(reply);
+}
+
+}  // namespace
+
+void dispatch(Session& session, const ClientMessage& message) {
+  const std::uint64_t request_id = message.request_id();
+  if (message.body_case() == ClientMessage::kHello) {
+    handle_hello(session, request_id, message.hello());
+    return;
+  }
+  if (!session.greeted()) {
+    session.send_error(request_id, v1::ERROR_CODE_HELLO_REQUIRED, "send Hello first");
+    return;
+  }
+  switch (message.body_case()) {
+    case ClientMessage::kLoadScene:
+      handle_load_scene(session, request_id, message.load_scene());
+      return;
+    case ClientMessage::kSubscribeFrames:
+      if (!session.scene()) break;
+      handle_subscribe(session, request_id, message.subscribe_frames());
+      return;
+    case ClientMessage::kProxyUpdate:
+      if (!session.scene()) break;
+      handle_proxy_update(session, request_id, message.proxy_update());
+      return;
+    default:
+      session.send_error(request_id, v1::ERROR_CODE_UNKNOWN_MESSAGE,
+                         "a ClientMessage with no body this server knows");
+      return;
+  }
+  session.send_error(request_id, v1::ERROR_CODE_NO_SCENE, "load or join a scene first");
+}
+
+}  // namespace felt::net

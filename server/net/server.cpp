@@ -1,0 +1,70 @@
+#include "net/server.hpp"
+
+#include <algorithm>
+
+#include "net/session.hpp"
+
+namespace felt::net {
+
+namespace asio = boost::asio;
+using asio::ip::tcp;
+
+Server::Server(asio::io_context& io, ServerContext& context)
+    : io_(io), context_(context), acceptor_(io) {}
+
+std::expected<tcp::endpoint, std::string> Server::listen(const std::string& host,
+                                                         std::uint16_t port) {
+  boost::system::error_code ec;
+  tcp::resolver resolver(io_);
+  const auto results = resolver.resolve(
+      host, std::to_string(port), tcp::resolver::numeric_service | tcp::resolver::passive, ec);
+  if (ec || results.empty()) return std::unexpected("cannot resolve " + host + ": " + ec.message());
+  const tcp::endpoint endpoint = results.begin()->endpoint();
+  acceptor_.open(endpoint.protocol(), ec);
+  if (!ec) acceptor_.set_option(tcp::acceptor::reuse_address(true), ec);
+  if (!ec) acceptor_.bind(endpoint, ec);
+  if (!ec) acceptor_.listen(asio::socket_base::max_listen_connections, ec);
+  if (ec) {
+    return std::unexpected("cannot listen on " + endpoint.address().to_string() + ":" +
+                           std::to_string(port) + ": " + ec.message());
+  }
+  accept();
+  return acceptor_.local_endpoint();
+}
+
+void Server::accept() {
+  // each connection gets its own strand: its handlers never run concurrently
+  acceptor_.async_accept(
+      asio::make_strand(io_), [this](const boost::system::error_code& ec, tcp::socket socket) {
+        if (ec == asio::error::operation_aborted || !acceptor_.is_open()) return;
+        if (!ec) {
+          socket.set_option(tcp::no_delay(true));  // a ForceUpdate must not wait for Nagle
+          auto session = std::make_shared<Session>(std::move(socket), context_);
+          {
+            std::lock_guard lock(sessions_mutex_);
+            std::erase_if(sessions_, [](const std::weak_ptr<Session>& s) { return s.expired(); });
+            sessions_.push_back(session);
+          }
+          session->start();
+        }
+        accept();
+      });
+}
+
+void Server::shutdown() {
+  boost::system::error_code ignored;
+  acceptor_.close(ignored);
+  std::lock_guard lock(sessions_mutex_);
+  for (const auto& weak : sessions_) {
+    if (auto session = weak.lock()) session->close();
+  }
+  sessions_.clear();
+}
+
+std::size_t Server::client_count() {
+  std::lock_guard lock(sessions_mutex_);
+  std::erase_if(sessions_, [](const std::weak_ptr<Session>& s) { return s.expired(); });
+  return sessions_.size();
+}
+
+}  // namespace felt::net

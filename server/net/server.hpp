@@ -1,0 +1,41 @@
+#pragma once
+// Accepts connections and owns the list of live sessions.
+
+#include <cstdint>
+#include <expected>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <boost/asio.hpp>
+
+#include "net/server_context.hpp"
+
+namespace felt::net {
+
+class Session;
+
+class Server {
+ public:
+  Server(boost::asio::io_context& io, ServerContext& context);
+
+  /// Binds and starts accepting; port 0 picks a free port. Returns the bound endpoint.
+  std::expected<boost::asio::ip::tcp::endpoint, std::string> listen(const std::string& host,
+                                                                    std::uint16_t port);
+  /// Stops accepting and closes every session.
+  void shutdown();
+  /// Sessions whose connection is still open.
+  std::size_t client_count();
+
+ private:
+  void accept();
+
+  boost::asio::io_context& io_;
+  ServerContext& context_;
+  boost::asio::ip::tcp::acceptor acceptor_;
+  std::mutex sessions_mutex_;
+  std::vector<std::weak_ptr<Session>> sessions_;
+};
+
+}  // namespace felt::net
