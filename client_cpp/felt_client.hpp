@@ -1,0 +1,74 @@
+#pragma once
+// felt_client: a synchronous client for scripts, tools and tests. Each call sends a request and
+// waits for its reply; frames that arrive meanwhile are kept for next_frame().
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include <boost/asio.hpp>
+
+#include "felt/v1/envelope.pb.h"
+#include "wire/frame_codec.hpp"
+
+namespace felt::client {
+
+/// An Error reply from the server, or a connection that failed.
+class ClientError : public std::runtime_error {
+ public:
+  ClientError(felt::v1::ErrorCode code, const std::string& message)
+      : std::runtime_error(message), code_(code) {}
+  felt::v1::ErrorCode code() const { return code_; }
+
+ private:
+  felt::v1::ErrorCode code_;
+};
+
+using Point = std::array<double, 3>;
+
+class Client {
+ public:
+  Client();
+  ~Client();
+
+  /// Connects to HOST:PORT; throws ClientError on failure.
+  void connect(const std::string& host, std::uint16_t port,
+               std::chrono::milliseconds timeout = std::chrono::seconds(5));
+  void close();
+
+  felt::v1::Welcome hello(const std::string& client_name, const std::string& token = "");
+  felt::v1::SceneLoaded load_scene_by_name(const std::string& name);
+  felt::v1::SceneLoaded load_scene_json(const std::string& json);
+  felt::v1::Subscribed subscribe_frames(double max_rate_hz = 0, bool normals = false);
+  felt::v1::ForceUpdate proxy_update(std::uint32_t proxy_id, const Point& position,
+                                     std::uint32_t buttons = 0);
+
+  /// The next frame, or nothing if none came within `timeout`.
+  std::optional<felt::v1::Frame> next_frame(std::chrono::milliseconds timeout);
+
+  /// Sends `message` with a fresh request id and returns the reply with that id. An Error
+  /// reply throws ClientError.
+  felt::v1::ServerMessage request(felt::v1::ClientMessage& message);
+
+  /// Sends raw bytes (protocol tests use this to send garbage).
+  void send_raw(const std::string& bytes);
+  /// The next message of any kind, or nothing on timeout; throws when the connection ends.
+  std::optional<felt::v1::ServerMessage> receive(std::chrono::milliseconds timeout);
+
+  void set_reply_timeout(std::chrono::milliseconds timeout) { reply_timeout_ = timeout; }
+
+ private:
+  boost::asio::io_context io_;
+  boost::asio::ip::tcp::socket socket_;
+  wire::FrameDecoder decoder_;
+  std::array<std::uint8_t, 64 * 1024> buffer_;
+  std::deque<felt::v1::Frame> frames_;
+  std::uint64_t next_request_id_ = 1;
+  std::chrono::milliseconds reply_timeout_ = std::chrono::seconds(10);
+};
+
+}  // namespace felt::client
