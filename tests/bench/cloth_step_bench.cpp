@@ -1,0 +1,54 @@
+// Cost of one world step of an n × n hanging cloth, per integrator (thesis 1 Table 9.x sizes).
+
+#include <benchmark/benchmark.h>
+
+#include "core/cloth_grid.hpp"
+#include "core/world.hpp"
+
+namespace felt {
+namespace {
+
+World hanging_cloth(std::uint32_t n, std::string_view integrator) {
+  GridClothSpec spec;
+  spec.nx = spec.ny = n;
+  spec.total_mass = 0.5;
+  ClothParams params;
+  params.spring(SpringKind::kStructural) = {true, 200, 0.05};
+  params.spring(SpringKind::kShear) = {true, 50, 0.02};
+  params.spring(SpringKind::kBend) = {true, 5, 0.005};
+  params.drag = 0.005;
+  ClothBody body("cloth", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
+                 make_integrator(integrator));
+  for (std::uint32_t p : grid_pin_indices(spec, GridPinPreset::kTopCorners)) body.pin(p);
+  // small step so every size stays stable with the explicit schemes
+  World world(WorldSettings{Vec3(0, -9.81, 0), 2.5e-4, 100, 6});
+  world.add_body(std::move(body));
+  return world;
+}
+
+void step(benchmark::State& state, std::string_view integrator) {
+  const auto n = static_cast<std::uint32_t>(state.range(0));
+  World world = hanging_cloth(n, integrator);
+  for (auto _ : state) {
+    world.step();
+    benchmark::ClobberMemory();
+  }
+  state.counters["particles"] = n * n;
+  state.counters["triangles"] = 2.0 * (n - 1) * (n - 1);
+}
+
+BENCHMARK_CAPTURE(step, explicit_euler, "explicit_euler")
+    ->Arg(10)
+    ->Arg(20)
+    ->Arg(40)
+    ->Arg(50)
+    ->Arg(100);
+BENCHMARK_CAPTURE(step, symplectic_euler, "symplectic_euler")
+    ->Arg(10)
+    ->Arg(20)
+    ->Arg(40)
+    ->Arg(50)
+    ->Arg(100);
+
+}  // namespace
+}  // namespace felt

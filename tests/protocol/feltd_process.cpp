@@ -1,0 +1,92 @@
+#include "feltd_process.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <regex>
+#include <stdexcept>
+#include <thread>
+
+extern char** environ;
+
+namespace felt::test {
+
+FeltdProcess::FeltdProcess(const std::vector<std::string>& args) {
+  std::vector<std::string> argv_storage = {FELTD_PATH, "serve", "--listen", "127.0.0.1:0"};
+  argv_storage.insert(argv_storage.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& arg : argv_storage) argv.push_back(arg.data());
+  argv.push_back(nullptr);
+
+  int pipe_fds[2];
+  if (pipe(pipe_fds) != 0) throw std::runtime_error("pipe failed");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDOUT_FILENO);
+  posix_spawn_file_actions_addclose(&actions, pipe_fds[0]);
+  const int spawned = posix_spawn(&pid_, FELTD_PATH, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  close(pipe_fds[1]);
+  stdout_fd_ = pipe_fds[0];
+  if (spawned != 0) throw std::runtime_error("cannot start " FELTD_PATH);
+
+  // read the first line, with a deadline
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (first_line_.find('\n') == std::string::npos) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    pollfd pfd{stdout_fd_, POLLIN, 0};
+    if (left.count() <= 0 || poll(&pfd, 1, static_cast<int>(left.count())) <= 0) {
+      throw std::runtime_error("feltd printed no line within 10 s");
+    }
+    char c;
+    if (read(stdout_fd_, &c, 1) != 1) throw std::runtime_error("feltd exited: " + first_line_);
+    first_line_.push_back(c);
+  }
+  first_line_.pop_back();
+  std::smatch match;
+  if (!std::regex_match(first_line_, match, std::regex(R"(listening on 127\.0\.0\.1:(\d+))"))) {
+    throw std::runtime_error("unexpected first line: " + first_line_);
+  }
+  port_ = static_cast<std::uint16_t>(std::stoi(match[1]));
+}
+
+FeltdProcess::~FeltdProcess() {
+  if (pid_ > 0 && running()) {
+    kill(pid_, SIGKILL);
+    waitpid(pid_, nullptr, 0);
+  }
+  if (stdout_fd_ >= 0) close(stdout_fd_);
+}
+
+bool FeltdProcess::running() {
+  if (pid_ <= 0) return false;
+  int status = 0;
+  const pid_t result = waitpid(pid_, &status, WNOHANG);
+  if (result == pid_) {
+    pid_ = -1;
+    return false;
+  }
+  return result == 0;
+}
+
+std::optional<int> FeltdProcess::stop(int signal, std::chrono::milliseconds timeout) {
+  if (pid_ <= 0) return std::nullopt;
+  kill(pid_, signal);
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    int status = 0;
+    if (waitpid(pid_, &status, WNOHANG) == pid_) {
+      pid_ = -1;
+      return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return std::nullopt;
+}
+
+}  // namespace felt::test

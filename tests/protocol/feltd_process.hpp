@@ -1,0 +1,38 @@
+#pragma once
+// The real feltd binary as a child process, for end-to-end tests.
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace felt::test {
+
+class FeltdProcess {
+ public:
+  /// Starts `feltd serve --listen 127.0.0.1:0 ARGS...` and reads the port from its first line.
+  /// Throws std::runtime_error when it does not come up.
+  explicit FeltdProcess(const std::vector<std::string>& args);
+  ~FeltdProcess();
+  FeltdProcess(const FeltdProcess&) = delete;
+  FeltdProcess& operator=(const FeltdProcess&) = delete;
+
+  std::uint16_t port() const { return port_; }
+  const std::string& first_line() const { return first_line_; }
+
+  /// Sends `signal` and waits for the exit; the exit status, or nothing on timeout.
+  std::optional<int> stop(int signal, std::chrono::milliseconds timeout);
+  /// Whether the process is still running.
+  bool running();
+
+ private:
+  pid_t pid_ = -1;
+  int stdout_fd_ = -1;
+  std::uint16_t port_ = 0;
+  std::string first_line_;
+};
+
+}  // namespace felt::test

@@ -1,0 +1,214 @@
+// End to end: the real feltd on port 0, driven through felt_client over loopback.
+
+#include <signal.h>
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "felt_client.hpp"
+#include "feltd_process.hpp"
+#include "wire/frame_codec.hpp"
+#include "wire/message_codec.hpp"
+
+namespace felt::test {
+namespace {
+
+namespace v1 = felt::v1;
+using client::Client;
+using client::ClientError;
+using namespace std::chrono_literals;
+
+std::vector<std::string> default_args() {
+  return {"--scene-dir", FELT_SCENE_DIR, "--scene", std::string(FELT_SCENE_DIR) + "/default.json"};
+}
+
+class FeltdTest : public ::testing::Test {
+ protected:
+  void SetUp() override { server_ = std::make_unique<FeltdProcess>(default_args()); }
+  void TearDown() override {
+    if (server_ && server_->running()) EXPECT_EQ(server_->stop(SIGTERM, 5s), 0);
+  }
+  void connect(Client& client) { client.connect("127.0.0.1", server_->port()); }
+
+  std::unique_ptr<FeltdProcess> server_;
+};
+
+std::array<double, 3> vertex(const v1::BodyFrame& body, int v) {
+  return {body.positions(3 * v), body.positions(3 * v + 1), body.positions(3 * v + 2)};
+}
+
+TEST_F(FeltdTest, HelloReportsVersionCapabilitiesAndTheDefaultScene) {
+  Client client;
+  connect(client);
+  const v1::Welcome welcome = client.hello("test");
+  EXPECT_EQ(welcome.protocol_version(), 1u);
+  EXPECT_FALSE(welcome.server_version().empty());
+  EXPECT_NE(welcome.scene_id(), 0u);
+  EXPECT_NE(
+      std::find(welcome.capabilities().begin(), welcome.capabilities().end(), "haptics.proxy"),
+      welcome.capabilities().end());
+}
+
+TEST_F(FeltdTest, RequestsBeforeHelloAndWrongVersionsAreRefused) {
+  Client client;
+  connect(client);
+  try {
+    client.subscribe_frames();
+    FAIL() << "subscribe before hello succeeded";
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), v1::ERROR_CODE_HELLO_REQUIRED);
+  }
+  v1::ClientMessage hello;
+  hello.mutable_hello()->set_protocol_version(99);
+  try {
+    client.request(hello);
+    FAIL() << "protocol 99 accepted";
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), v1::ERROR_CODE_UNSUPPORTED_VERSION);
+  }
+  // the connection is still usable
+  EXPECT_EQ(client.hello("test").protocol_version(), 1u);
+}
+
+TEST_F(FeltdTest, LoadedSceneStreamsFramesThatMove) {
+  Client client;
+  connect(client);
+  client.hello("test");
+  const v1::SceneLoaded loaded = client.load_scene_by_name("default");
+  ASSERT_EQ(loaded.bodies_size(), 1);
+  EXPECT_EQ(loaded.bodies(0).particles(), 400u);
+  EXPECT_EQ(loaded.bodies(0).triangles(), 722u);
+  const v1::Subscribed subscribed = client.subscribe_frames(30, true);
+  EXPECT_EQ(subscribed.scene_id(), loaded.scene_id());
+
+  const auto first = client.next_frame(5s);
+  ASSERT_TRUE(first);
+  ASSERT_EQ(first->bodies_size(), 1);
+  EXPECT_EQ(first->scene_id(), loaded.scene_id());
+  EXPECT_EQ(first->bodies(0).positions_size(), 3 * 400);
+  EXPECT_EQ(first->bodies(0).normals_size(), 3 * 400);
+  EXPECT_EQ(first->bodies(0).triangles_size(), 3 * 722);  // topology in the first frame only
+
+  // the free bottom corner falls while the cloth sags
+  std::optional<v1::Frame> later;
+  for (int i = 0; i < 10; ++i) later = client.next_frame(5s);
+  ASSERT_TRUE(later);
+  EXPECT_GT(later->step(), first->step());
+  EXPECT_EQ(later->bodies(0).triangles_size(), 0);
+  EXPECT_LT(vertex(later->bodies(0), 399)[1], vertex(first->bodies(0), 399)[1]);
+  for (float x : later->bodies(0).positions()) ASSERT_TRUE(std::isfinite(x));
+}
+
+TEST_F(FeltdTest, ProxyPushedIntoTheClothIsPushedBackOut) {
+  Client client;
+  connect(client);
+  client.hello("test");
+  client.subscribe_frames(60, true);
+  const auto frame = client.next_frame(5s);
+  ASSERT_TRUE(frame);
+  // put the proxy (radius 2 cm in the default scene) 1 cm in front of a middle vertex
+  const v1::BodyFrame& body = frame->bodies(0);
+  const int middle = 10 * 20 + 10;
+  const auto p = vertex(body, middle);
+  const std::array<double, 3> n = {body.normals(3 * middle), body.normals(3 * middle + 1),
+                                   body.normals(3 * middle + 2)};
+  const std::array<double, 3> at = {p[0] + 0.01 * n[0], p[1] + 0.01 * n[1], p[2] + 0.01 * n[2]};
+  const v1::ForceUpdate force = client.proxy_update(0, at);
+  ASSERT_TRUE(force.in_contact());
+  const double along_normal =
+      force.force().x() * n[0] + force.force().y() * n[1] + force.force().z() * n[2];
+  EXPECT_GT(along_normal, 0.5 * 400 * 0.01);  // k · depth, depth ≈ 1 cm
+  EXPECT_GE(force.triangle(), 0);
+  EXPECT_GT(force.server_send_ns(), 0u);
+
+  // far from the cloth: no force
+  const v1::ForceUpdate free = client.proxy_update(0, {5, 5, 5});
+  EXPECT_FALSE(free.in_contact());
+  EXPECT_EQ(free.force().x(), 0);
+  EXPECT_EQ(free.force().y(), 0);
+  EXPECT_EQ(free.force().z(), 0);
+}
+
+TEST_F(FeltdTest, BadRequestsGetErrorsAndTheConnectionStaysUsable) {
+  Client client;
+  connect(client);
+  client.hello("test");
+  const auto expect_error = [&](auto call, v1::ErrorCode code) {
+    try {
+      call();
+      ADD_FAILURE() << "no error";
+    } catch (const ClientError& e) {
+      EXPECT_EQ(e.code(), code) << e.what();
+    }
+  };
+  expect_error([&] { client.proxy_update(0, {NAN, 0, 0}); }, v1::ERROR_CODE_BAD_REQUEST);
+  expect_error([&] { client.proxy_update(0, {INFINITY, 0, 0}); }, v1::ERROR_CODE_BAD_REQUEST);
+  expect_error([&] { client.load_scene_by_name("../../etc/passwd"); }, v1::ERROR_CODE_NOT_FOUND);
+  expect_error([&] { client.load_scene_by_name("no_such_scene"); }, v1::ERROR_CODE_NOT_FOUND);
+  expect_error([&] { client.load_scene_json("{\"bodies\": 3}"); }, v1::ERROR_CODE_BAD_SCENE);
+  expect_error([&] { client.load_scene_json("not json"); }, v1::ERROR_CODE_BAD_SCENE);
+  expect_error([&] { client.subscribe_frames(-1); }, v1::ERROR_CODE_BAD_REQUEST);
+  v1::ClientMessage empty;
+  expect_error([&] { client.request(empty); }, v1::ERROR_CODE_UNKNOWN_MESSAGE);
+  EXPECT_FALSE(client.proxy_update(0, {5, 5, 5}).in_contact());
+}
+
+TEST_F(FeltdTest, GarbageClosesOnlyThatConnection) {
+  Client good;
+  connect(good);
+  good.hello("good");
+
+  Client bad;
+  connect(bad);
+  bad.send_raw(std::string("\x05garbage-that-is-not-protobuf\xff\xff", 34));
+  const auto reply = bad.receive(5s);
+  ASSERT_TRUE(reply);
+  ASSERT_TRUE(reply->has_error());
+  EXPECT_EQ(reply->error().code(), v1::ERROR_CODE_MALFORMED_FRAME);
+  EXPECT_THROW(bad.receive(5s), ClientError);  // then the server hangs up
+
+  Client huge;
+  connect(huge);
+  std::string prefix;
+  wire::append_varint(prefix, 1ull << 40);
+  huge.send_raw(prefix);
+  const auto too_large = huge.receive(5s);
+  ASSERT_TRUE(too_large);
+  EXPECT_EQ(too_large->error().code(), v1::ERROR_CODE_FRAME_TOO_LARGE);
+
+  EXPECT_FALSE(good.proxy_update(0, {5, 5, 5}).in_contact());
+  EXPECT_TRUE(server_->running());
+}
+
+TEST_F(FeltdTest, ExitsCleanlyOnSigterm) {
+  Client client;
+  connect(client);
+  client.hello("test");
+  client.subscribe_frames();
+  ASSERT_TRUE(client.next_frame(5s));
+  EXPECT_EQ(server_->stop(SIGTERM, 5s), 0);
+  EXPECT_FALSE(server_->running());
+}
+
+TEST(Feltd, TokenIsRequiredWhenConfigured) {
+  auto args = default_args();
+  args.insert(args.end(), {"--token", "sesame"});
+  FeltdProcess server(args);
+  {
+    Client client;
+    client.connect("127.0.0.1", server.port());
+    try {
+      client.hello("intruder", "open");
+      FAIL() << "a wrong token was accepted";
+    } catch (const ClientError& e) {
+      EXPECT_EQ(e.code(), v1::ERROR_CODE_UNAUTHORIZED);
+    }
+    EXPECT_THROW(client.subscribe_frames(), ClientError);  // still not greeted
+    EXPECT_EQ(client.hello("friend", "sesame").protocol_version(), 1u);
+  }
+  EXPECT_EQ(server.stop(SIGINT, 5s), 0);
+}
+
+}  // namespace
+}  // namespace felt::test

@@ -1,0 +1,123 @@
+#include "runtime/scene_runner.hpp"
+
+#include <chrono>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "core/cloth_grid.hpp"
+
+namespace felt {
+namespace {
+
+using namespace std::chrono_literals;
+
+/// A horizontal 1 m cloth at y = 0 held at its four corners, without gravity, so that it stays
+/// flat until something touches it.
+Scene flat_cloth_scene(Vec3 gravity = Vec3::Zero()) {
+  GridClothSpec spec;
+  spec.nx = 11;
+  spec.ny = 11;
+  spec.total_mass = 0.2;
+  spec.plane = GridClothSpec::Plane::kXZ;
+  ClothParams params;
+  params.spring(SpringKind::kStructural) = {true, 200, 0.05};
+  params.spring(SpringKind::kShear) = {true, 50, 0.02};
+  params.spring(SpringKind::kBend) = {true, 5, 0.005};
+  params.drag = 0.02;
+  ClothBody cloth("sheet", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
+                  make_integrator("symplectic_euler"));
+  for (std::uint32_t p : grid_pin_indices(spec, GridPinPreset::kFourCorners)) cloth.pin(p);
+  Scene scene{"flat", World(WorldSettings{gravity, 1e-3, 100, 6}), ProxySettings{0.05, 400, 10}};
+  scene.world.add_body(std::move(cloth));
+  return scene;
+}
+
+template <typename Predicate>
+bool wait_for(Predicate done, std::chrono::milliseconds timeout = 5s) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(2ms);
+  }
+  return true;
+}
+
+TEST(SceneRunner, PublishesSnapshotsThatFollowTheWallClock) {
+  SceneRunner runner(flat_cloth_scene(Vec3(0, -9.81, 0)));
+  const auto first = runner.latest();
+  EXPECT_EQ(first->step, 0u);
+  runner.start();
+  ASSERT_TRUE(wait_for([&] { return runner.latest()->sim_time >= 0.2; }));
+  const auto later = runner.latest();
+  runner.stop();
+  // the centre particle sags under gravity
+  const std::uint32_t centre = 5 * 11 + 5;
+  EXPECT_LT(later->bodies[0].positions[centre].y(), first->bodies[0].positions[centre].y() - 1e-3);
+  // snapshots are immutable: the first one still shows the start
+  EXPECT_EQ(first->bodies[0].positions[centre].y(), 0.0);
+  EXPECT_EQ(runner.latest()->step, runner.stats().steps);
+}
+
+TEST(SceneRunner, AppliesPostedCommandsBetweenSteps) {
+  SceneRunner runner(flat_cloth_scene());
+  runner.start();
+  std::atomic<std::uint64_t> seen_at{0};
+  runner.post([&](Scene& scene) {
+    scene.world.bodies()[0].state().x[60] += Vec3(0, 0.1, 0);
+    seen_at = scene.world.step_count() + 1;
+  });
+  ASSERT_TRUE(wait_for([&] { return seen_at > 0 && runner.latest()->step >= seen_at; }));
+  EXPECT_GT(runner.latest()->bodies[0].positions[60].y(), 0.01);
+  runner.stop();
+}
+
+TEST(SceneRunner, TouchPushesOutOfTheClothAndDentsIt) {
+  SceneRunner runner(flat_cloth_scene());
+  const std::uint32_t centre = 5 * 11 + 5;
+  // a proxy of radius 5 cm centred 3 cm above the centre of the sheet: depth 2 cm
+  const Vec3 above(0, 0.03, 0);
+  const ProxyContact contact = runner.touch(1, above);
+  ASSERT_TRUE(contact.in_contact);
+  EXPECT_NEAR(contact.force.y(), 400 * 0.02, 1e-9);
+  EXPECT_NEAR(contact.force.x(), 0, 1e-12);
+  EXPECT_NEAR(contact.force.z(), 0, 1e-12);
+  EXPECT_NEAR(contact.contact_point.y(), 0, 1e-12);
+
+  // held there, the reaction pushes the sheet down under the proxy
+  runner.start();
+  const auto deadline = std::chrono::steady_clock::now() + 300ms;
+  while (std::chrono::steady_clock::now() < deadline) {
+    runner.touch(1, above);
+    std::this_thread::sleep_for(1ms);
+  }
+  runner.stop();
+  EXPECT_LT(runner.latest()->bodies[0].positions[centre].y(), -0.005);
+  EXPECT_GT(runner.stats().haptic_updates, 50u);
+
+  // from below, the force points down
+  const ProxyContact below = runner.touch(2, Vec3(0.2, -0.2, 0.2));
+  EXPECT_FALSE(below.in_contact);
+  EXPECT_EQ(below.force, Vec3::Zero());
+  EXPECT_EQ(below.contact_point, Vec3(0.2, -0.2, 0.2));
+}
+
+TEST(SceneRunner, ForceIsClampedToTheMaximum) {
+  SceneRunner runner(flat_cloth_scene());
+  // at the surface the depth is the whole radius: 400 N/m · 5 cm = 20 N, clamped to 10 N
+  const ProxyContact contact = runner.touch(1, Vec3(0.01, 0, 0.01));
+  ASSERT_TRUE(contact.in_contact);
+  EXPECT_NEAR(contact.force.norm(), 10, 1e-9);
+}
+
+TEST(SceneRunner, StopsPromptly) {
+  SceneRunner runner(flat_cloth_scene());
+  runner.start();
+  std::this_thread::sleep_for(20ms);
+  const auto start = std::chrono::steady_clock::now();
+  runner.stop();
+  EXPECT_LT(std::chrono::steady_clock::now() - start, 1s);
+}
+
+}  // namespace
+}  // namespace felt

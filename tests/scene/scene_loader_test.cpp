@@ -1,0 +1,121 @@
+#include "scene/scene_loader.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace felt {
+namespace {
+
+using nlohmann::json;
+
+json minimal_cloth() {
+  return json::parse(R"({
+    "name": "t",
+    "bodies": [{ "type": "cloth", "grid": { "nx": 4, "ny": 3 }, "mass": 1.2 }]
+  })");
+}
+
+std::string error_of(const json& document) {
+  const auto scene = load_scene(document);
+  return scene ? std::string("(loaded)") : scene.error().what();
+}
+
+TEST(SceneLoader, LoadsTheDefaultScene) {
+  const auto scene = load_scene_file(std::string(FELT_SCENE_DIR) + "/default.json");
+  ASSERT_TRUE(scene) << scene.error().what();
+  EXPECT_EQ(scene->name, "default");
+  ASSERT_EQ(scene->world.bodies().size(), 1u);
+  const ClothBody& curtain = scene->world.bodies()[0];
+  EXPECT_EQ(curtain.name(), "curtain");
+  EXPECT_EQ(curtain.model().particle_count(), 400u);
+  EXPECT_EQ(curtain.integrator().name(), "symplectic_euler");
+  EXPECT_TRUE(curtain.is_pinned(0));
+  EXPECT_TRUE(curtain.is_pinned(19));
+  EXPECT_FALSE(curtain.is_pinned(1));
+}
+
+TEST(SceneLoader, AppliesDefaultsAndGivenValues) {
+  json doc = minimal_cloth();
+  doc["time_step"] = 0.002;
+  doc["gravity"] = {0, 0, -1};
+  doc["bodies"][0]["springs"]["shear"] = {{"stiffness", 7}, {"enabled", false}};
+  const auto scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  EXPECT_DOUBLE_EQ(scene->world.settings().time_step, 0.002);
+  EXPECT_EQ(scene->world.settings().gravity, Vec3(0, 0, -1));
+  const ClothBody& body = scene->world.bodies()[0];
+  EXPECT_EQ(body.name(), "cloth0");
+  EXPECT_EQ(body.model().particle_count(), 12u);
+  Real total = 0;
+  for (Real m : body.model().mass) total += m;
+  EXPECT_NEAR(total, 1.2, 1e-12);
+  EXPECT_DOUBLE_EQ(body.params().spring(SpringKind::kShear).stiffness, 7);
+  EXPECT_FALSE(body.params().spring(SpringKind::kShear).enabled);
+  EXPECT_TRUE(body.params().spring(SpringKind::kStructural).enabled);
+}
+
+TEST(SceneLoader, NamesThePathOfTheBadValue) {
+  json doc = minimal_cloth();
+  doc["bodies"][0]["springs"]["shear"]["stiffness"] = -1;
+  EXPECT_EQ(error_of(doc), "bodies[0].springs.shear.stiffness: must be > 0");
+
+  doc = minimal_cloth();
+  doc["bodies"][0]["grid"]["nx"] = 1;
+  EXPECT_EQ(error_of(doc), "bodies[0].grid.nx: must be between 2 and 2048");
+
+  doc = minimal_cloth();
+  doc["bodies"][0]["sprngs"] = json::object();
+  EXPECT_EQ(error_of(doc), "bodies[0].sprngs: unknown key");
+
+  doc = minimal_cloth();
+  doc["gravity"] = {0, "down", 0};
+  EXPECT_EQ(error_of(doc), "gravity[1]: must be a finite number");
+
+  doc = minimal_cloth();
+  doc["bodies"][0]["pin"] = {0, 12};
+  EXPECT_EQ(error_of(doc), "bodies[0].pin[1]: must be a particle index below 12");
+
+  doc = minimal_cloth();
+  doc["time_step"] = 0;
+  EXPECT_EQ(error_of(doc), "time_step: must be > 0");
+
+  doc = minimal_cloth();
+  doc["bodies"][0]["type"] = "jelly";
+  EXPECT_EQ(error_of(doc), "bodies[0].type: must be \"cloth\"");
+}
+
+TEST(SceneLoader, UnknownIntegratorListsTheKnownOnes) {
+  json doc = minimal_cloth();
+  doc["bodies"][0]["integrator"] = "magic";
+  const std::string error = error_of(doc);
+  EXPECT_NE(error.find("bodies[0].integrator: unknown integrator \"magic\""), std::string::npos);
+  EXPECT_NE(error.find("symplectic_euler"), std::string::npos);
+}
+
+TEST(SceneLoader, RejectsTextThatIsNotJson) {
+  const auto scene = load_scene_text("{ \"bodies\": [ ");
+  ASSERT_FALSE(scene);
+  EXPECT_NE(scene.error().what().find("not valid JSON"), std::string::npos);
+  EXPECT_FALSE(load_scene_text("[1, 2]"));
+}
+
+TEST(SceneLoader, PinPresetsAndLists) {
+  json doc = minimal_cloth();
+  doc["bodies"][0]["pin"] = "four_corners";
+  auto scene = load_scene(doc);
+  ASSERT_TRUE(scene);
+  for (std::uint32_t p : {0u, 3u, 8u, 11u}) EXPECT_TRUE(scene->world.bodies()[0].is_pinned(p));
+  EXPECT_FALSE(scene->world.bodies()[0].is_pinned(5));
+
+  doc["bodies"][0]["pin"] = {5};
+  scene = load_scene(doc);
+  ASSERT_TRUE(scene);
+  EXPECT_TRUE(scene->world.bodies()[0].is_pinned(5));
+  EXPECT_FALSE(scene->world.bodies()[0].is_pinned(0));
+
+  doc["bodies"][0]["pin"] = "everything";
+  EXPECT_NE(error_of(doc).find("bodies[0].pin: must be none"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace felt
