@@ -10,6 +10,7 @@
 #include "core/dynamic_system.hpp"
 #include "core/integrator.hpp"
 #include "core/particle_state.hpp"
+#include "core/stretch_limiter.hpp"
 
 namespace felt {
 
@@ -17,6 +18,7 @@ namespace felt {
 struct ClothParams {
   std::array<SpringParams, kSpringKindCount> springs;  ///< indexed by SpringKind
   Real drag = 0;                                       ///< viscous drag k_d: f = −k_d v, N·s/m
+  StretchLimit stretch;                                ///< inverse dynamics after each step
 
   SpringParams& spring(SpringKind kind) { return springs[static_cast<int>(kind)]; }
   const SpringParams& spring(SpringKind kind) const { return springs[static_cast<int>(kind)]; }
@@ -66,6 +68,8 @@ class ClothBody final : public DynamicSystem {
   std::span<const Real> inv_mass() const override { return inv_mass_; }
   void compute_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real t,
                       std::span<Vec3> f) const override;
+  bool compute_jacobian(std::span<const Vec3> x, std::span<const Vec3> v,
+                        ForceJacobian& jacobian) const override;
 
  private:
   std::string name_;

@@ -2,6 +2,7 @@
 
 #include <span>
 
+#include "core/force_jacobian.hpp"
 #include "core/types.hpp"
 
 namespace felt {
@@ -18,6 +19,13 @@ class DynamicSystem {
   /// Writes into `f` the total force on every particle in state (x, v) at time t.
   virtual void compute_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real t,
                               std::span<Vec3> f) const = 0;
+
+  /// Fills `jacobian` with ∂f/∂x and ∂f/∂v at (x, v). Systems that cannot return false, and
+  /// implicit integrators then refuse them.
+  virtual bool compute_jacobian(std::span<const Vec3> /*x*/, std::span<const Vec3> /*v*/,
+                                ForceJacobian& /*jacobian*/) const {
+    return false;
+  }
 };
 
 }  // namespace felt

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "core/explicit_integrators.hpp"
+#include "core/implicit_euler.hpp"
 
 namespace felt {
 namespace {
@@ -20,6 +21,7 @@ std::unique_ptr<Integrator> make_one() {
 constexpr std::array kIntegrators{
     Entry{"explicit_euler", &make_one<ExplicitEuler>},
     Entry{"symplectic_euler", &make_one<SymplecticEuler>},
+    Entry{"implicit_euler", &make_one<ImplicitEuler>},
 };
 
 }  // namespace

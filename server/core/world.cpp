@@ -48,7 +48,10 @@ StepReport World::step() {
 
 bool World::try_step(ClothBody& body, int substeps, Real energy_before) {
   const Real h = settings_.time_step / substeps;
-  for (int s = 0; s < substeps; ++s) body.integrator().step(body, body.state(), time_ + s * h, h);
+  for (int s = 0; s < substeps; ++s) {
+    body.integrator().step(body, body.state(), time_ + s * h, h);
+    limit_stretch(body.model(), body.inv_mass(), body.params().stretch, h, body.state());
+  }
   return healthy(body, energy_before);
 }
 

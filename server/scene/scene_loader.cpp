@@ -144,6 +144,17 @@ ClothParams read_springs(const ObjectReader& body) {
   params.spring(SpringKind::kShear) = {true, 50, 0.02};
   params.spring(SpringKind::kBend) = {true, 5, 0.005};
   params.drag = body.non_negative("drag", 0.005);
+  if (body.has("stretch_limit")) {
+    const ObjectReader limit(
+        body.at("stretch_limit"), body.path_of("stretch_limit"),
+        {"enabled", "max_strain", "iterations", "position_correction", "velocity_correction"});
+    StretchLimit& stretch = params.stretch;
+    stretch.enabled = limit.boolean("enabled", true);
+    stretch.max_strain = limit.positive("max_strain", stretch.max_strain);
+    stretch.iterations = static_cast<int>(limit.count("iterations", stretch.iterations, 1, 1000));
+    stretch.position_correction = limit.boolean("position_correction", stretch.position_correction);
+    stretch.velocity_correction = limit.boolean("velocity_correction", stretch.velocity_correction);
+  }
   if (!body.has("springs")) return params;
 
   const ObjectReader springs(body.at("springs"), body.path_of("springs"),
@@ -238,7 +249,7 @@ Scene read_scene(const json& document) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const ObjectReader body(
         bodies[i], element("bodies", i),
-        {"name", "type", "grid", "mass", "springs", "drag", "integrator", "pin"});
+        {"name", "type", "grid", "mass", "springs", "drag", "stretch_limit", "integrator", "pin"});
     const std::string type = body.string("type", "");
     if (type != "cloth") fail(body.path_of("type"), "must be \"cloth\"");
     scene.world.add_body(read_cloth(body, i));

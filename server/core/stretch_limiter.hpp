@@ -1,0 +1,28 @@
+#pragma once
+// Inverse dynamics: after the integrator, pull over-stretched springs back (thesis 1 §4.6).
+
+#include <span>
+
+#include "core/cloth_model.hpp"
+#include "core/particle_state.hpp"
+
+namespace felt {
+
+struct StretchLimit {
+  bool enabled = false;
+  Real max_strain = 0.1;  ///< s_max − 1: the thesis uses 10% in its example, 15% in its code
+  int iterations = 4;     ///< Gauss–Seidel sweeps; stops early once no spring is too long
+  /// Provot position correction (structural and shear springs).
+  bool position_correction = true;
+  /// Vassilev et al. 2001 velocity correction: the velocities of both ends of a too-long
+  /// spring get the same component along it, so the stretch stops growing.
+  bool velocity_correction = false;
+};
+
+/// Applies the enabled corrections to `state` after a step of length h. Pinned particles
+/// (inverse mass 0) never move: the other end is moved the whole way instead (Provot).
+/// Returns the number of sweeps taken.
+int limit_stretch(const ClothModel& model, std::span<const Real> inv_mass,
+                  const StretchLimit& limit, Real h, ParticleState& state);
+
+}  // namespace felt
