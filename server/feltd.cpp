@@ -99,12 +99,26 @@ int serve(const ServeOptions& options) {
 
   // SIGINT/SIGTERM: stop accepting, close the sessions, finish the current steps, exit 0
   asio::signal_set signals(io, SIGINT, SIGTERM);
+  // on a signal: close the sessions on their strands, then stop once they are gone (or after
+  // two seconds, so that a stuck session cannot keep the process alive)
+  asio::steady_timer drain_timer(io);
+  std::function<void(std::chrono::steady_clock::time_point)> drain =
+      [&](std::chrono::steady_clock::time_point deadline) {
+        if (server.client_count() == 0 || std::chrono::steady_clock::now() > deadline) {
+          io.stop();
+          return;
+        }
+        drain_timer.expires_after(std::chrono::milliseconds(10));
+        drain_timer.async_wait([&, deadline](const boost::system::error_code& ec) {
+          if (!ec) drain(deadline);
+        });
+      };
   signals.async_wait([&](const boost::system::error_code& ec, int) {
     if (ec) return;
     status_timer.cancel();
     server.shutdown();
     scenes.stop_all();
-    io.stop();
+    drain(std::chrono::steady_clock::now() + std::chrono::seconds(2));
   });
   io.run();
   scenes.stop_all();

@@ -62,6 +62,13 @@ void handle_hello(Session& session, std::uint64_t request_id, const v1::Hello& h
 
 void handle_load_scene(Session& session, std::uint64_t request_id, const v1::LoadScene& load) {
   ServerContext& context = session.context();
+  if (context.scenes.size() >= context.options.max_scenes) {
+    session.send_error(
+        request_id, v1::ERROR_CODE_LIMIT_EXCEEDED,
+        "the server already runs " + std::to_string(context.options.max_scenes) + " scenes");
+    return;
+  }
+  const SceneLimits limits{context.options.max_particles_per_scene};
   std::expected<Scene, SceneError> scene = std::unexpected(SceneError{"", "no scene given"});
   switch (load.source_case()) {
     case v1::LoadScene::kName: {
@@ -70,11 +77,18 @@ void handle_load_scene(Session& session, std::uint64_t request_id, const v1::Loa
         session.send_error(request_id, v1::ERROR_CODE_NOT_FOUND, file.error());
         return;
       }
-      scene = load_scene_file(*file);
+      scene = load_scene_file(*file, limits);
+      if (!scene) {
+        // the client named the scene; it has no business learning the server's paths
+        SceneError& error = scene.error();
+        for (std::size_t at; (at = error.message.find(file->string())) != std::string::npos;) {
+          error.message.replace(at, file->string().size(), "scene \"" + load.name() + "\"");
+        }
+      }
       break;
     }
     case v1::LoadScene::kJson:
-      scene = load_scene_text(load.json());
+      scene = load_scene_text(load.json(), limits);
       break;
     case v1::LoadScene::SOURCE_NOT_SET:
       session.send_error(request_id, v1::ERROR_CODE_BAD_REQUEST, "LoadScene needs a name or json");
@@ -107,8 +121,12 @@ void handle_load_scene(Session& session, std::uint64_t request_id, const v1::Loa
 
 void handle_subscribe(Session& session, std::uint64_t request_id, const v1::SubscribeFrames& sub) {
   const ServerOptions& options = session.context().options;
-  if (!std::isfinite(sub.max_rate_hz()) || sub.max_rate_hz() < 0) {
-    session.send_error(request_id, v1::ERROR_CODE_BAD_REQUEST, "max_rate_hz must be >= 0");
+  const double asked = sub.max_rate_hz();
+  // a tiny rate would overflow the timer period; 0 asks for the default
+  if (!std::isfinite(asked) || asked < 0 || (asked > 0 && asked < options.min_frame_rate_hz)) {
+    session.send_error(request_id, v1::ERROR_CODE_BAD_REQUEST,
+                       "max_rate_hz must be 0 (the default) or at least " +
+                           std::to_string(options.min_frame_rate_hz));
     return;
   }
   const double rate = sub.max_rate_hz() == 0
@@ -131,8 +149,15 @@ void handle_proxy_update(Session& session, std::uint64_t request_id,
                        "position must be three finite numbers");
     return;
   }
-  const ProxyContact contact =
-      session.scene()->touch(session.proxy_key(update.proxy_id()), position);
+  const auto proxy_key = session.open_proxy(update.proxy_id());
+  if (!proxy_key) {
+    session.send_error(request_id, v1::ERROR_CODE_LIMIT_EXCEEDED,
+                       "at most " +
+                           std::to_string(session.context().options.max_proxies_per_session) +
+                           " proxies per session");
+    return;
+  }
+  const ProxyContact contact = session.scene()->touch(*proxy_key, position);
 
   ServerMessage reply;
   reply.set_request_id(request_id);

@@ -58,7 +58,6 @@ void Server::shutdown() {
   for (const auto& weak : sessions_) {
     if (auto session = weak.lock()) session->close();
   }
-  sessions_.clear();
 }
 
 std::size_t Server::client_count() {

@@ -116,7 +116,7 @@ void Session::write_next() {
     in_flight_ = std::move(replies_.front());
     replies_.pop_front();
     queued_reply_bytes_ -= in_flight_.size();
-  } else if (frame_pending_) {
+  } else if (frame_pending_ && !closing_) {
     in_flight_.swap(pending_frame_);
     frame_pending_ = false;
   } else {
@@ -137,6 +137,10 @@ void Session::write_next() {
 
 void Session::join(SceneId id, std::shared_ptr<SceneRunner> scene) {
   leave_scene();
+  // a frame of the previous scene that has not gone out yet is dropped
+  frame_pending_ = false;
+  pending_frame_.clear();
+  pending_topology_.clear();
   scene_id_ = id;
   scene_ = std::move(scene);
   topology_sent_.assign(scene_ ? scene_->bodies().size() : 0, false);
@@ -145,16 +149,27 @@ void Session::join(SceneId id, std::shared_ptr<SceneRunner> scene) {
 
 void Session::leave_scene() {
   if (scene_) {
-    for (std::uint32_t proxy : proxies_) scene_->close_proxy(proxy_key(proxy));
+    for (std::uint32_t proxy : proxies_) scene_->close_proxy(key_of(proxy));
   }
   proxies_.clear();
   scene_.reset();
+  // a scene a client loaded lives as long as some session is in it
+  if (scene_id_ != 0 && scene_id_ != context_.default_scene) {
+    context_.scenes.remove_if_unused(scene_id_);
+  }
   scene_id_ = 0;
 }
 
-std::uint64_t Session::proxy_key(std::uint32_t proxy_id) {
-  proxies_.insert(proxy_id);
+std::uint64_t Session::key_of(std::uint32_t proxy_id) const {
   return (id_ << 32) | proxy_id;
+}
+
+std::optional<std::uint64_t> Session::open_proxy(std::uint32_t proxy_id) {
+  if (!proxies_.contains(proxy_id)) {
+    if (proxies_.size() >= context_.options.max_proxies_per_session) return std::nullopt;
+    proxies_.insert(proxy_id);
+  }
+  return key_of(proxy_id);
 }
 
 void Session::subscribe_frames(double rate_hz, bool normals) {
@@ -180,20 +195,21 @@ void Session::on_frame_tick() {
   if (scene_) {
     const auto snapshot = scene_->latest();
     if (snapshot->step != last_frame_step_) {
+      std::uint64_t skipped = 0;
       if (frame_pending_) {
         // the client has not taken the previous frame: it is dropped, and so are the triangles
         // it carried, which the next frame must carry instead
-        ++frames_skipped_;
+        skipped = pending_frame_skipped_ + 1;
         for (std::uint32_t body : pending_topology_) topology_sent_[body] = false;
       }
       v1::ServerMessage message;
       pending_topology_ = build_frame(*snapshot, scene_id_, stream_normals_, topology_sent_,
-                                      frames_skipped_, *message.mutable_frame());
+                                      skipped, *message.mutable_frame());
       pending_frame_.clear();
       wire::append_message(pending_frame_, message);
       frame_pending_ = true;
+      pending_frame_skipped_ = skipped;
       last_frame_step_ = snapshot->step;
-      frames_skipped_ = 0;
       write_next();
     }
   }

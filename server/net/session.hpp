@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -46,8 +47,9 @@ class Session : public std::enable_shared_from_this<Session> {
   /// Joins a scene, leaving the previous one (its proxies are closed, frames restart).
   void join(SceneId id, std::shared_ptr<SceneRunner> scene);
 
-  /// The key the runtime knows this session's proxy `proxy_id` by.
-  std::uint64_t proxy_key(std::uint32_t proxy_id);
+  /// The key the runtime knows this session's proxy `proxy_id` by, opening the proxy on first
+  /// use; nothing when the session already has as many proxies as it may.
+  std::optional<std::uint64_t> open_proxy(std::uint32_t proxy_id);
 
   /// Streams frames of the joined scene at up to `rate_hz`.
   void subscribe_frames(double rate_hz, bool normals);
@@ -60,6 +62,7 @@ class Session : public std::enable_shared_from_this<Session> {
   void on_frame_tick();
   void leave_scene();
   void shutdown();
+  std::uint64_t key_of(std::uint32_t proxy_id) const;
 
   boost::asio::ip::tcp::socket socket_;
   ServerContext& context_;
@@ -71,7 +74,8 @@ class Session : public std::enable_shared_from_this<Session> {
   std::size_t queued_reply_bytes_ = 0;
   std::string pending_frame_;  ///< latest-wins: a newer frame replaces one not yet written
   bool frame_pending_ = false;
-  std::string in_flight_;  ///< the bytes async_write is sending
+  std::uint64_t pending_frame_skipped_ = 0;  ///< the `skipped` count the pending frame carries
+  std::string in_flight_;                    ///< the bytes async_write is sending
   bool writing_ = false;
   bool closing_ = false;  ///< a fatal error was queued: close once it is written
   bool closed_ = false;
@@ -86,7 +90,6 @@ class Session : public std::enable_shared_from_this<Session> {
   bool stream_normals_ = false;
   std::chrono::nanoseconds frame_period_{0};
   std::uint64_t last_frame_step_ = ~std::uint64_t{0};
-  std::uint64_t frames_skipped_ = 0;
   std::vector<bool> topology_sent_;  ///< per body: has this subscription had its triangles
   std::vector<std::uint32_t> pending_topology_;  ///< bodies whose triangles the pending frame has
 };

@@ -24,25 +24,36 @@ void ReactionAccumulator::add(std::uint64_t proxy_key, std::uint32_t body_id,
   }
 }
 
+void ReactionAccumulator::add_free(std::uint64_t proxy_key) {
+  std::lock_guard lock(mutex_);
+  ++reactions_[proxy_key].samples;
+}
+
 void ReactionAccumulator::forget(std::uint64_t proxy_key) {
   std::lock_guard lock(mutex_);
-  reactions_.erase(proxy_key);
+  const auto it = reactions_.find(proxy_key);
+  if (it != reactions_.end()) it->second.closed = true;
 }
 
 void ReactionAccumulator::apply_and_clear(World& world) {
   std::lock_guard lock(mutex_);
-  for (auto& [key, reaction] : reactions_) {
-    if (reaction.samples == 0) continue;
-    const Real weight = Real{1} / reaction.samples;
-    for (const ParticleForce& pf : reaction.forces) {
+  for (auto it = reactions_.begin(); it != reactions_.end();) {
+    ProxyReaction& reaction = it->second;
+    if (reaction.samples > 0) {
+      const Real weight = Real{1} / reaction.samples;
+      reaction.held.swap(reaction.forces);
+      for (ParticleForce& pf : reaction.held) pf.force *= weight;
+      reaction.forces.clear();
+      reaction.samples = 0;
+    }
+    for (const ParticleForce& pf : reaction.held) {
       if (pf.body_id >= world.bodies().size()) continue;
       // ids come from a snapshot, so check them against the world they are applied to
       ClothBody& body = world.bodies()[pf.body_id];
       if (pf.particle >= body.model().particle_count()) continue;
-      body.add_external_force(pf.particle, weight * pf.force);
+      body.add_external_force(pf.particle, pf.force);
     }
-    reaction.forces.clear();
-    reaction.samples = 0;
+    it = reaction.closed ? reactions_.erase(it) : std::next(it);
   }
 }
 

@@ -1,7 +1,10 @@
 #pragma once
 // Forces that haptic proxies exert back on the bodies they touch. Proxies report at their own
 // rate from any thread; the physics thread applies, once per step, each proxy's mean force
-// since the previous step (DESIGN: reaction averaged over each physics step).
+// over the updates since the previous step (DESIGN: reaction averaged over each physics step),
+// free updates counting as zero. A proxy slower than the physics keeps pushing with its last
+// mean until its next update (a zero-order hold), so a 30 Hz device dents the cloth as a
+// 1 kHz one does.
 
 #include <cstdint>
 #include <mutex>
@@ -18,8 +21,10 @@ class ReactionAccumulator {
   /// of body `body_id`, at the point with barycentric coordinates `barycentric`.
   void add(std::uint64_t proxy_key, std::uint32_t body_id, const Triangle& corners,
            const Vec3& barycentric, const Vec3& force);
+  /// Records an update of proxy `proxy_key` that touched nothing.
+  void add_free(std::uint64_t proxy_key);
 
-  /// Drops a proxy that was closed.
+  /// Drops a closed proxy after the next step has applied what it pushed last.
   void forget(std::uint64_t proxy_key);
 
   /// Applies each proxy's mean force as external forces on the bodies, then forgets them.
@@ -33,8 +38,10 @@ class ReactionAccumulator {
     Vec3 force;
   };
   struct ProxyReaction {
-    std::vector<ParticleForce> forces;  ///< summed per particle
+    std::vector<ParticleForce> forces;  ///< summed per particle since the last step
     std::uint32_t samples = 0;
+    std::vector<ParticleForce> held;  ///< the mean applied at the last step
+    bool closed = false;
   };
   // bounds the memory a proxy can pin between two steps
   static constexpr std::size_t kMaxParticlesPerProxy = 96;

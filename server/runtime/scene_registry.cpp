@@ -45,6 +45,18 @@ bool SceneRegistry::remove(SceneId id) {
   return true;
 }
 
+void SceneRegistry::remove_if_unused(SceneId id) {
+  std::shared_ptr<SceneRunner> removed;
+  {
+    std::lock_guard lock(mutex_);
+    const std::uint32_t index = index_of(id);
+    if (index >= slots_.size() || slots_[index].generation != generation_of(id)) return;
+    if (slots_[index].runner.use_count() != 1) return;
+    removed = std::move(slots_[index].runner);
+  }
+  removed->stop();
+}
+
 void SceneRegistry::stop_all() {
   std::vector<std::shared_ptr<SceneRunner>> runners;
   {

@@ -22,6 +22,9 @@ class SceneRegistry {
   std::shared_ptr<SceneRunner> find(SceneId id) const;
   /// Removes and stops a scene; false for an unknown id.
   bool remove(SceneId id);
+  /// Removes and stops the scene if nobody but the registry holds it any more (the last session
+  /// left). Sessions only obtain runners through find() or by creating them.
+  void remove_if_unused(SceneId id);
   /// Stops every scene's physics thread (shutdown).
   void stop_all();
   std::size_t size() const;

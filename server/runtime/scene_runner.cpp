@@ -49,6 +49,8 @@ ProxyContact SceneRunner::touch(std::uint64_t proxy_key, const Vec3& position) {
     const BodySnapshot& body = snapshot->bodies[contact.body_id];
     reactions_.add(proxy_key, contact.body_id, body.triangles()[contact.triangle],
                    contact.barycentric, -contact.force);
+  } else {
+    reactions_.add_free(proxy_key);
   }
   haptic_updates_.fetch_add(1, std::memory_order_relaxed);
   return contact;

@@ -202,13 +202,21 @@ std::vector<std::uint32_t> read_pins(const ObjectReader& body, const GridClothSp
   return indices;
 }
 
-ClothBody read_cloth(const ObjectReader& body, std::size_t index) {
+ClothBody read_cloth(const ObjectReader& body, std::size_t index, std::size_t& particles_left) {
   if (!body.has("grid")) fail(body.path_of("grid"), "is required for a cloth");
   const GridClothSpec spec = [&] {
     GridClothSpec s = read_grid(body);
     s.total_mass = body.positive("mass", 1);
     return s;
   }();
+  // checked before anything is allocated for the body
+  const std::size_t particles = std::size_t{spec.nx} * spec.ny;
+  if (particles > particles_left) {
+    fail(body.path_of("grid"), std::to_string(particles) + " particles exceed the " +
+                                   std::to_string(particles_left) +
+                                   " the scene's particle limit leaves");
+  }
+  particles_left -= particles;
   const std::string integrator_name = body.string("integrator", "symplectic_euler");
   auto integrator = make_integrator(integrator_name);
   if (!integrator) {
@@ -225,7 +233,7 @@ ClothBody read_cloth(const ObjectReader& body, std::size_t index) {
   return cloth;
 }
 
-Scene read_scene(const json& document) {
+Scene read_scene(const json& document, const SceneLimits& limits) {
   const ObjectReader root(document, "",
                           {"name", "time_step", "gravity", "max_speed", "haptics", "bodies"});
   WorldSettings settings;
@@ -246,22 +254,23 @@ Scene read_scene(const json& document) {
   if (!root.has("bodies")) return scene;
   const json& bodies = root.at("bodies");
   if (!bodies.is_array()) fail("bodies", "must be an array");
+  std::size_t particles_left = limits.max_particles;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const ObjectReader body(
         bodies[i], element("bodies", i),
         {"name", "type", "grid", "mass", "springs", "drag", "stretch_limit", "integrator", "pin"});
     const std::string type = body.string("type", "");
     if (type != "cloth") fail(body.path_of("type"), "must be \"cloth\"");
-    scene.world.add_body(read_cloth(body, i));
+    scene.world.add_body(read_cloth(body, i, particles_left));
   }
   return scene;
 }
 
 }  // namespace
 
-std::expected<Scene, SceneError> load_scene(const json& document) {
+std::expected<Scene, SceneError> load_scene(const json& document, const SceneLimits& limits) {
   try {
-    return read_scene(document);
+    return read_scene(document, limits);
   } catch (const Failure& failure) {
     return std::unexpected(failure.error);
   }
@@ -270,15 +279,16 @@ std::expected<Scene, SceneError> load_scene(const json& document) {
 std::expected<json, SceneError> parse_json(std::string_view text, const std::string& source) {
   try {
     return json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse errors, and numbers no double can hold (1e400), among others
     return std::unexpected(SceneError{"", source + " is not valid JSON: " + e.what()});
   }
 }
 
-std::expected<Scene, SceneError> load_scene_text(std::string_view text) {
+std::expected<Scene, SceneError> load_scene_text(std::string_view text, const SceneLimits& limits) {
   const auto document = parse_json(text, "the scene");
   if (!document) return std::unexpected(document.error());
-  return load_scene(*document);
+  return load_scene(*document, limits);
 }
 
 std::expected<json, SceneError> read_scene_json(const std::filesystem::path& file) {
@@ -289,10 +299,11 @@ std::expected<json, SceneError> read_scene_json(const std::filesystem::path& fil
   return parse_json(text.str(), file.string());
 }
 
-std::expected<Scene, SceneError> load_scene_file(const std::filesystem::path& file) {
+std::expected<Scene, SceneError> load_scene_file(const std::filesystem::path& file,
+                                                 const SceneLimits& limits) {
   const auto document = read_scene_json(file);
   if (!document) return std::unexpected(document.error());
-  return load_scene(*document);
+  return load_scene(*document, limits);
 }
 
 }  // namespace felt

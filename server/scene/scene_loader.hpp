@@ -21,9 +21,17 @@ struct SceneError {
   std::string what() const { return path.empty() ? message : path + ": " + message; }
 };
 
-std::expected<Scene, SceneError> load_scene(const nlohmann::json& document);
-std::expected<Scene, SceneError> load_scene_text(std::string_view text);
-std::expected<Scene, SceneError> load_scene_file(const std::filesystem::path& file);
+/// Bounds on what a scene may ask for, checked before memory is allocated for it.
+struct SceneLimits {
+  std::size_t max_particles = 4'000'000;
+};
+
+std::expected<Scene, SceneError> load_scene(const nlohmann::json& document,
+                                            const SceneLimits& limits = {});
+std::expected<Scene, SceneError> load_scene_text(std::string_view text,
+                                                 const SceneLimits& limits = {});
+std::expected<Scene, SceneError> load_scene_file(const std::filesystem::path& file,
+                                                 const SceneLimits& limits = {});
 
 /// Parses JSON text; `source` names it in the error.
 std::expected<nlohmann::json, SceneError> parse_json(std::string_view text,

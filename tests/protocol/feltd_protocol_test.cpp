@@ -137,7 +137,7 @@ TEST_F(FeltdTest, BadRequestsGetErrorsAndTheConnectionStaysUsable) {
   const auto expect_error = [&](auto call, v1::ErrorCode code) {
     try {
       call();
-      ADD_FAILURE() << "no error";
+      ADD_FAILURE() << "no error (expected code " << code << ")";
     } catch (const ClientError& e) {
       EXPECT_EQ(e.code(), code) << e.what();
     }
@@ -149,8 +149,13 @@ TEST_F(FeltdTest, BadRequestsGetErrorsAndTheConnectionStaysUsable) {
   expect_error([&] { client.load_scene_json("{\"bodies\": 3}"); }, v1::ERROR_CODE_BAD_SCENE);
   expect_error([&] { client.load_scene_json("not json"); }, v1::ERROR_CODE_BAD_SCENE);
   expect_error([&] { client.subscribe_frames(-1); }, v1::ERROR_CODE_BAD_REQUEST);
+  expect_error([&] { client.subscribe_frames(1e-12); }, v1::ERROR_CODE_BAD_REQUEST);
+  expect_error([&] { client.load_scene_json(R"({"time_step": 1e400})"); },
+               v1::ERROR_CODE_BAD_SCENE);
   v1::ClientMessage empty;
   expect_error([&] { client.request(empty); }, v1::ERROR_CODE_UNKNOWN_MESSAGE);
+  for (std::uint32_t proxy = 0; proxy < 16; ++proxy) client.proxy_update(proxy, {5, 5, 5});
+  expect_error([&] { client.proxy_update(16, {5, 5, 5}); }, v1::ERROR_CODE_LIMIT_EXCEEDED);
   EXPECT_FALSE(client.proxy_update(0, {5, 5, 5}).in_contact());
 }
 

@@ -102,6 +102,21 @@ TEST(SceneRunner, TouchPushesOutOfTheClothAndDentsIt) {
   EXPECT_EQ(below.contact_point, Vec3(0.2, -0.2, 0.2));
 }
 
+TEST(SceneRunner, ASingleTouchKeepsPushingUntilTheNextUpdate) {
+  // a device slower than the physics: its last reaction is held between its updates
+  SceneRunner runner(flat_cloth_scene());
+  const std::uint32_t centre = 5 * 11 + 5;
+  ASSERT_TRUE(runner.touch(1, Vec3(0, 0.03, 0)).in_contact);
+  runner.start();
+  ASSERT_TRUE(wait_for([&] { return runner.latest()->sim_time >= 0.2; }));
+  EXPECT_LT(runner.latest()->bodies[0].positions[centre].y(), -0.005);
+  // a free update releases it: the sheet springs back toward flat
+  runner.touch(1, Vec3(0, 1, 0));
+  ASSERT_TRUE(wait_for([&] { return runner.latest()->sim_time >= 2.0; }));
+  runner.stop();
+  EXPECT_GT(runner.latest()->bodies[0].positions[centre].y(), -0.002);
+}
+
 TEST(SceneRunner, ForceIsClampedToTheMaximum) {
   SceneRunner runner(flat_cloth_scene());
   // at the surface the depth is the whole radius: 400 N/m · 5 cm = 20 N, clamped to 10 N

@@ -20,6 +20,11 @@ std::string error_of(const json& document) {
   return scene ? std::string("(loaded)") : scene.error().what();
 }
 
+std::string error_of_limited(const json& document, std::size_t max_particles) {
+  const auto scene = load_scene(document, SceneLimits{max_particles});
+  return scene ? std::string("(loaded)") : scene.error().what();
+}
+
 TEST(SceneLoader, LoadsTheDefaultScene) {
   const auto scene = load_scene_file(std::string(FELT_SCENE_DIR) + "/default.json");
   ASSERT_TRUE(scene) << scene.error().what();
@@ -97,6 +102,20 @@ TEST(SceneLoader, RejectsTextThatIsNotJson) {
   ASSERT_FALSE(scene);
   EXPECT_NE(scene.error().what().find("not valid JSON"), std::string::npos);
   EXPECT_FALSE(load_scene_text("[1, 2]"));
+}
+
+TEST(SceneLoader, NumbersNoDoubleHoldsAreAnErrorNotACrash) {
+  const auto scene = load_scene_text(R"({"time_step": 1e400})");
+  ASSERT_FALSE(scene);
+  EXPECT_NE(scene.error().what().find("not valid JSON"), std::string::npos);
+}
+
+TEST(SceneLoader, ParticleLimitIsCheckedBeforeBuilding) {
+  json doc = minimal_cloth();
+  doc["bodies"].push_back(doc["bodies"][0]);  // two bodies of 12 particles
+  EXPECT_TRUE(load_scene(doc, SceneLimits{24}));
+  EXPECT_EQ(error_of_limited(doc, 20),
+            "bodies[1].grid: 12 particles exceed the 8 the scene's particle limit leaves");
 }
 
 TEST(SceneLoader, PinPresetsAndLists) {
