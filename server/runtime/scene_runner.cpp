@@ -12,6 +12,8 @@ using Seconds = std::chrono::duration<double>;
 // Lagging further than this behind the wall clock re-synchronises instead of catching up, so a
 // slow scene runs slower than real time rather than stepping in bursts.
 constexpr double kMaxLagSeconds = 0.1;
+// real-time factor and step time are averaged over windows this long
+constexpr double kStatsWindowSeconds = 0.5;
 
 }  // namespace
 
@@ -109,7 +111,7 @@ void SceneRunner::run(std::stop_token stop) {
       stats_.rescued_steps += rescued;
       stats_.unrecoverable_steps += unrecoverable;
       const double window = Seconds(after - window_start).count();
-      if (window >= 1.0) {
+      if (window >= kStatsWindowSeconds) {
         stats_.real_time_factor = (world.time() - window_sim_start) / window;
         stats_.ms_per_step = window_steps ? 1e3 * window_step_seconds / window_steps : 0;
         window_start = after;

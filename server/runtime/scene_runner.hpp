@@ -31,8 +31,8 @@ struct BodyInfo {
 struct RunnerStats {
   std::uint64_t steps = 0;
   double sim_time = 0;
-  double real_time_factor = 0;       ///< simulated seconds per wall second, over the last second
-  double ms_per_step = 0;            ///< wall time of one step, averaged over the last second
+  double real_time_factor = 0;  ///< simulated seconds per wall second, over the last half second
+  double ms_per_step = 0;       ///< wall time of one step, averaged over the last half second
   std::uint64_t haptic_updates = 0;  ///< proxy solves since the scene started
   std::uint64_t rescued_steps = 0;
   std::uint64_t unrecoverable_steps = 0;
