@@ -18,8 +18,8 @@ void ImplicitEuler::step(const DynamicSystem& system, ParticleState& state, Real
 
   const auto inv_mass = system.inv_mass();
   system.compute_forces(state.x, state.v, t, force_);
-  // a system without Jacobians is a programming error: the scene loader offers this
-  // integrator only for bodies that have them
+  // a system without Jacobians is a programming error: every body type the loader builds
+  // (cloth today) provides them
   FELT_CHECK(system.compute_jacobian(state.x, state.v, jacobian_));
 
   // right-hand side h (f₀ + h K v₀)

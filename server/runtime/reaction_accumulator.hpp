@@ -27,8 +27,8 @@ class ReactionAccumulator {
   /// Drops a closed proxy after the next step has applied what it pushed last.
   void forget(std::uint64_t proxy_key);
 
-  /// Applies each proxy's mean force as external forces on the bodies, then forgets them.
-  /// Called by the physics thread only.
+  /// Applies each proxy's mean force since the last step (or, without new updates, the mean it
+  /// applied last) as external forces on the bodies. Called by the physics thread only.
   void apply_and_clear(World& world);
 
  private:
