@@ -19,6 +19,7 @@ struct ClothParams {
   std::array<SpringParams, kSpringKindCount> springs;  ///< indexed by SpringKind
   Real drag = 0;                                       ///< viscous drag k_d: f = −k_d v, N·s/m
   StretchLimit stretch;                                ///< inverse dynamics after each step
+  Real thickness = 0.005;  ///< m; how close particles may come to a collider
 
   SpringParams& spring(SpringKind kind) { return springs[static_cast<int>(kind)]; }
   const SpringParams& spring(SpringKind kind) const { return springs[static_cast<int>(kind)]; }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/cloth_body.hpp"
+#include "core/collider.hpp"
 
 namespace felt {
 
@@ -42,6 +43,8 @@ class World {
   /// Adds a body and returns its index.
   std::uint32_t add_body(ClothBody body);
   std::vector<ClothBody>& bodies() { return bodies_; }
+  void add_collider(const Collider& collider) { colliders_.push_back(collider); }
+  const std::vector<Collider>& colliders() const { return colliders_; }
   const std::vector<ClothBody>& bodies() const { return bodies_; }
 
   /// Advances every body by one time step. A body whose step leaves a non-finite or exploding
@@ -60,6 +63,7 @@ class World {
 
   WorldSettings settings_;
   std::vector<ClothBody> bodies_;
+  std::vector<Collider> colliders_;
   ParticleState backup_;
   Real time_ = 0;
   std::uint64_t step_count_ = 0;

@@ -144,6 +144,7 @@ ClothParams read_springs(const ObjectReader& body) {
   params.spring(SpringKind::kShear) = {true, 50, 0.02};
   params.spring(SpringKind::kBend) = {true, 5, 0.005};
   params.drag = body.non_negative("drag", 0.005);
+  params.thickness = body.non_negative("thickness", params.thickness);
   if (body.has("stretch_limit")) {
     const ObjectReader limit(
         body.at("stretch_limit"), body.path_of("stretch_limit"),
@@ -233,9 +234,43 @@ ClothBody read_cloth(const ObjectReader& body, std::size_t index, std::size_t& p
   return cloth;
 }
 
+Collider read_collider(const json& value, const std::string& path) {
+  const ObjectReader reader(
+      value, path,
+      {"type", "point", "normal", "center", "radius", "half_extents", "a", "b", "friction"});
+  Collider c;
+  c.friction = reader.non_negative("friction", c.friction);
+  const std::string type = reader.string("type", "");
+  if (type == "plane") {
+    c.shape = Collider::Shape::kPlane;
+    c.center = reader.vec3("point", Vec3::Zero());
+    const Vec3 normal = reader.vec3("normal", Vec3::UnitY());
+    if (normal.norm() == 0) fail(reader.path_of("normal"), "must not be zero");
+    c.normal = normal.normalized();
+  } else if (type == "sphere") {
+    c.shape = Collider::Shape::kSphere;
+    c.center = reader.vec3("center", Vec3::Zero());
+    c.radius = reader.positive("radius", c.radius);
+  } else if (type == "box") {
+    c.shape = Collider::Shape::kBox;
+    c.center = reader.vec3("center", Vec3::Zero());
+    c.half_extents = reader.vec3("half_extents", c.half_extents);
+    if ((c.half_extents.array() <= 0).any()) fail(reader.path_of("half_extents"), "must be > 0");
+  } else if (type == "capsule") {
+    c.shape = Collider::Shape::kCapsule;
+    c.center = reader.vec3("a", Vec3::Zero());
+    c.end = reader.vec3("b", Vec3::UnitX());
+    c.radius = reader.positive("radius", c.radius);
+  } else {
+    fail(reader.path_of("type"), "must be plane, sphere, box or capsule");
+  }
+  return c;
+}
+
 Scene read_scene(const json& document, const SceneLimits& limits) {
-  const ObjectReader root(document, "",
-                          {"name", "time_step", "gravity", "max_speed", "haptics", "bodies"});
+  const ObjectReader root(
+      document, "",
+      {"name", "time_step", "gravity", "max_speed", "haptics", "colliders", "bodies"});
   WorldSettings settings;
   settings.time_step = root.positive("time_step", settings.time_step);
   if (settings.time_step > 0.1) fail(root.path_of("time_step"), "must be at most 0.1 s");
@@ -251,14 +286,21 @@ Scene read_scene(const json& document, const SceneLimits& limits) {
     scene.haptics.max_force = haptics.positive("max_force", scene.haptics.max_force);
   }
 
+  if (root.has("colliders")) {
+    const json& colliders = root.at("colliders");
+    if (!colliders.is_array()) fail("colliders", "must be an array");
+    for (std::size_t i = 0; i < colliders.size(); ++i) {
+      scene.world.add_collider(read_collider(colliders[i], element("colliders", i)));
+    }
+  }
   if (!root.has("bodies")) return scene;
   const json& bodies = root.at("bodies");
   if (!bodies.is_array()) fail("bodies", "must be an array");
   std::size_t particles_left = limits.max_particles;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const ObjectReader body(
-        bodies[i], element("bodies", i),
-        {"name", "type", "grid", "mass", "springs", "drag", "stretch_limit", "integrator", "pin"});
+    const ObjectReader body(bodies[i], element("bodies", i),
+                            {"name", "type", "grid", "mass", "springs", "drag", "stretch_limit",
+                             "thickness", "integrator", "pin"});
     const std::string type = body.string("type", "");
     if (type != "cloth") fail(body.path_of("type"), "must be \"cloth\"");
     scene.world.add_body(read_cloth(body, i, particles_left));

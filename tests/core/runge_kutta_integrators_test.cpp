@@ -3,8 +3,8 @@
 
 #include "core/runge_kutta_integrators.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <vector>
 
@@ -26,7 +26,7 @@ using test::start_at;
 /// Particle 0 on a spring to the origin (f = −k x); particle 1 pushed by a force growing with
 /// time, f = m g t, so that x₁ = g t³/6 from rest at the origin. Any scheme of order ≥ 3 follows
 /// that cubic exactly whatever its step sizes, so particle 1 is a clock that tells whether a
-/// call covered exactly [t, t + h]. Records the earliest and latest times it was asked at.
+/// call covered exactly [t, t + h]. Records the times it was asked at.
 class SpringAndRamp final : public DynamicSystem {
  public:
   SpringAndRamp(Real stiffness, Vec3 g) : stiffness_(stiffness), g_(g) {}
@@ -35,22 +35,18 @@ class SpringAndRamp final : public DynamicSystem {
                       std::span<Vec3> f) const override {
     f[0] = -stiffness_ * x[0];
     f[1] = kMass * g_ * t;
-    earliest_ = std::min(earliest_, t);
-    latest_ = std::max(latest_, t);
+    times_.push_back(t);
   }
-  void forget_times() {
-    earliest_ = std::numeric_limits<Real>::infinity();
-    latest_ = -earliest_;
-  }
-  Real earliest() const { return earliest_; }
-  Real latest() const { return latest_; }
+  const std::vector<Real>& times() const { return times_; }
+  void forget_times() { times_.clear(); }
+  Real earliest() const { return *std::min_element(times_.begin(), times_.end()); }
+  Real latest() const { return *std::max_element(times_.begin(), times_.end()); }
 
  private:
   std::vector<Real> inv_mass_{1 / kMass, 1 / kMass};
   Real stiffness_;
   Vec3 g_;
-  mutable Real earliest_ = std::numeric_limits<Real>::infinity();
-  mutable Real latest_ = -std::numeric_limits<Real>::infinity();
+  mutable std::vector<Real> times_;
 };
 
 /// Error of particle 0 of `state` against the undamped oscillator from x = 1 at time t.
@@ -215,26 +211,42 @@ TEST(AdaptiveRungeKutta, EveryCallAdvancesExactlyH) {
 }
 
 TEST(AdaptiveRungeKutta, KeepsItsInternalStepBetweenCalls) {
+  // the second stage of DOPRI5 is evaluated at t + dt/5, which tells the step size tried
+  SpringAndRamp system(100 * kStiffness, Vec3::Zero());
   AdaptiveRungeKutta adaptive(1e-8);
-  Oscillator system(kMass, 100 * kStiffness);
-  ParticleState state = start_at(Vec3(1, 0, 0));
+  ParticleState state{{Vec3(1, 0, 0), Vec3::Zero()}, {Vec3::Zero(), Vec3::Zero()}};
   const Real h = 0.05;
   EXPECT_EQ(adaptive.internal_step(), 0);
   adaptive.step(system, state, 0, h);
-  // the first call starts by trying h itself, far too long here, and shrinks
-  EXPECT_GT(adaptive.last_rejected_steps(), 0);
+  // the first call tries h itself, far too long here (ωh ≈ 3), and shrinks
+  EXPECT_NEAR(system.times()[1], h / 5, 1e-15);
+  const int fresh_rejections = adaptive.last_rejected_steps();
+  EXPECT_GE(fresh_rejections, 2);
   const Real kept = adaptive.internal_step();
   EXPECT_GT(kept, 0);
   EXPECT_LT(kept, h / 10);
-  // the next calls start from the kept step size: (almost) nothing rejected
+
+  // the next call starts from the kept step size
+  system.forget_times();
+  adaptive.step(system, state, h, h);
+  EXPECT_EQ(system.times()[0], h);
+  EXPECT_NEAR(system.times()[1], h + kept / 5, 1e-15);
+  EXPECT_LT(adaptive.last_rejected_steps(), fresh_rejections);
+  int accepted = 0;
   int rejected = 0;
-  for (int n = 1; n < 20; ++n) {
+  for (int n = 2; n < 20; ++n) {
     adaptive.step(system, state, n * h, h);
     rejected += adaptive.last_rejected_steps();
+    accepted += adaptive.last_internal_steps() - adaptive.last_rejected_steps();
   }
-  EXPECT_LE(rejected, 2);
+  EXPECT_LT(rejected, accepted / 10);
+
+  // reset() forgets it: back to trying h
   adaptive.reset();
   EXPECT_EQ(adaptive.internal_step(), 0);
+  system.forget_times();
+  adaptive.step(system, state, 20 * h, h);
+  EXPECT_NEAR(system.times()[1], 20 * h + h / 5, 1e-15);
 }
 
 TEST(AdaptiveRungeKutta, NeverTakesMoreThanItsCapOfInternalSteps) {

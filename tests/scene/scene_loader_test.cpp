@@ -118,6 +118,23 @@ TEST(SceneLoader, ParticleLimitIsCheckedBeforeBuilding) {
             "bodies[1].grid: 12 particles exceed the 8 the scene's particle limit leaves");
 }
 
+TEST(SceneLoader, ReadsCollidersAndNamesTheirBadValues) {
+  const auto scene = load_scene_file(std::string(FELT_SCENE_DIR) + "/cloth_on_ball.json");
+  ASSERT_TRUE(scene) << scene.error().what();
+  ASSERT_EQ(scene->world.colliders().size(), 2u);
+  EXPECT_EQ(scene->world.colliders()[1].shape, Collider::Shape::kSphere);
+  EXPECT_DOUBLE_EQ(scene->world.colliders()[1].radius, 0.3);
+  EXPECT_DOUBLE_EQ(scene->world.bodies()[0].params().thickness, 0.01);
+
+  json doc = minimal_cloth();
+  doc["colliders"] = json::parse(R"([{"type": "plane"}, {"type": "sphere", "radius": -1}])");
+  EXPECT_EQ(error_of(doc), "colliders[1].radius: must be > 0");
+  doc["colliders"] = json::parse(R"([{"type": "plane", "normal": [0, 0, 0]}])");
+  EXPECT_EQ(error_of(doc), "colliders[0].normal: must not be zero");
+  doc["colliders"] = json::parse(R"([{"type": "cone"}])");
+  EXPECT_EQ(error_of(doc), "colliders[0].type: must be plane, sphere, box or capsule");
+}
+
 TEST(SceneLoader, PinPresetsAndLists) {
   json doc = minimal_cloth();
   doc["bodies"][0]["pin"] = "four_corners";
