@@ -4,6 +4,8 @@
 
 #include "core/explicit_integrators.hpp"
 #include "core/implicit_euler.hpp"
+#include "core/runge_kutta_integrators.hpp"
+#include "core/verlet_integrators.hpp"
 
 namespace felt {
 namespace {
@@ -21,6 +23,12 @@ std::unique_ptr<Integrator> make_one() {
 constexpr std::array kIntegrators{
     Entry{"explicit_euler", &make_one<ExplicitEuler>},
     Entry{"symplectic_euler", &make_one<SymplecticEuler>},
+    Entry{"midpoint", &make_one<Midpoint>},
+    Entry{"rk4", &make_one<RungeKutta4>},
+    Entry{"adaptive_rk", &make_one<AdaptiveRungeKutta>},
+    Entry{"verlet", &make_one<PositionVerlet>},
+    Entry{"velocity_verlet", &make_one<VelocityVerlet>},
+    Entry{"leapfrog", &make_one<Leapfrog>},
     Entry{"implicit_euler", &make_one<ImplicitEuler>},
 };
 

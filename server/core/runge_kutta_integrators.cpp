@@ -35,8 +35,8 @@ void derivative(const DynamicSystem& system, std::span<const Vec3> x, std::span<
 }
 
 // Dormand–Prince 5(4), Hairer, Nørsett & Wanner, Solving ODEs I (2nd ed.), Table 5.2.
-constexpr std::array<Real, AdaptiveRungeKutta::kStages> kC{0,         1.0 / 5, 3.0 / 10, 4.0 / 5,
-                                                           8.0 / 9.0, 1,       1};
+constexpr std::array<Real, AdaptiveRungeKutta::kStages> kC{0,       1.0 / 5, 3.0 / 10, 4.0 / 5,
+                                                           8.0 / 9, 1,       1};
 constexpr std::array<std::array<Real, AdaptiveRungeKutta::kStages - 1>, AdaptiveRungeKutta::kStages>
     kA{{
         {},
@@ -135,6 +135,7 @@ void AdaptiveRungeKutta::evaluate_stage(const DynamicSystem& system, const Parti
 }
 
 void AdaptiveRungeKutta::step(const DynamicSystem& system, ParticleState& state, Real t, Real h) {
+  if (!(h > 0)) return;  // nothing to advance; the kept step size stays
   const std::size_t n = state.size();
   for (int s = 0; s < kStages; ++s) size_buffers(n, dx_[s], dv_[s]);
   size_buffers(n, x_stage_, v_stage_);

@@ -39,10 +39,13 @@ class RungeKutta4 final : public Integrator {
 /// coefficients as in Hairer, Nørsett & Wanner, Solving ODEs I, §II.5 Table 5.2): the fifth-order
 /// solution is kept (local extrapolation), the fourth-order one only estimates the error. Chosen
 /// over Bogacki–Shampine 3(2) because tight tolerances (1e-8 m) then need far fewer force
-/// evaluations, and its stability region reaches further along both axes.
+/// evaluations. Its stability region reaches −3.31 on the real axis (BS3: −2.51) but only ±1.0i
+/// on the imaginary one (BS3: ±√3 i); the error control keeps ω dt far below either (≈ 0.1 at
+/// 1e-8 m on a 1 m oscillation) unless the step cap forces longer steps.
 ///
 /// Each step() advances exactly h, subdivided into internal steps whose size the error control
-/// picks (thesis 1 §4.2 "adaptive step", in the standard form of HNW I §II.4). The last accepted
+/// picks (thesis 1 §4.2 "adaptive step", which estimates the error by one step of h against two
+/// of h/2; the embedded pair gets it from the same stages, HNW I §II.4). The last accepted
 /// internal step size is kept between calls. A call takes at most max_internal_steps() internal
 /// steps, rejected ones included: an internal step is never shorter than the remaining interval
 /// divided by the steps left, and a step of that smallest size is accepted whatever its error,

@@ -1,8 +1,18 @@
 #include "core/verlet_integrators.hpp"
 
+#include <limits>
+
 namespace felt {
+namespace {
+
+/// Marks the history of a pinned particle as absent: NaN equals nothing, so the particle
+/// restarts with the exact start formula should it be unpinned.
+const Vec3 kNoHistory = Vec3::Constant(std::numeric_limits<Real>::quiet_NaN());
+
+}  // namespace
 
 void PositionVerlet::step(const DynamicSystem& system, ParticleState& state, Real t, Real h) {
+  if (!(h > 0)) return;  // nothing to advance, and h/h_prev, (x_new − x)/h would be 0/0
   const std::size_t n = state.size();
   if (x_prev_.size() != n) {
     x_prev_.resize(n);
@@ -22,9 +32,8 @@ void PositionVerlet::step(const DynamicSystem& system, ParticleState& state, Rea
   for (std::size_t p = 0; p < n; ++p) {
     const Vec3 x = state.x[p];
     if (inv_mass[p] == 0) {
-      x_prev_[p] = x;  // at rest, should it be unpinned
       state.v[p].setZero();
-      v_out_[p].setZero();
+      v_out_[p] = kNoHistory;
       continue;
     }
     const Vec3 a = inv_mass[p] * force_[p];
@@ -81,6 +90,7 @@ void VelocityVerlet::step(const DynamicSystem& system, ParticleState& state, Rea
 }
 
 void Leapfrog::step(const DynamicSystem& system, ParticleState& state, Real t, Real h) {
+  if (!(h > 0)) return;  // nothing to advance; the half-step velocity stays valid
   const std::size_t n = state.size();
   if (offset_.size() != n) {
     offset_.resize(n);
@@ -91,19 +101,20 @@ void Leapfrog::step(const DynamicSystem& system, ParticleState& state, Real t, R
   system.compute_forces(state.x, state.v, t, force_);
   const auto inv_mass = system.inv_mass();
   const bool start = h_prev_ == 0;
-  // the kick spans from t − ½h_prev to t + ½h: ½(h_prev + h), ½h at the start
+  // the kick spans from t − ½h_prev to t + ½h
   const Real kick = 0.5 * (h_prev_ + h);
   for (std::size_t p = 0; p < n; ++p) {
     if (inv_mass[p] == 0) {
-      offset_[p].setZero();
+      offset_[p] = kNoHistory;
       state.v[p].setZero();
       continue;
     }
     const Vec3 a = inv_mass[p] * force_[p];
-    // v(t−½h_prev), the internal half-step velocity; v(t) itself at the start
-    const Vec3 v_before = start ? state.v[p] : Vec3(state.v[p] - offset_[p]);
-    const Vec3 v_half = v_before + kick * a;  // kick
-    state.x[p] += h * v_half;                 // drift
+    // the internal half-step velocity: v(t) + ½h a(t) at the start (or just unpinned), else
+    // v(t−½h_prev) + ½(h_prev + h) a(t)
+    const Vec3 v_half = start || offset_[p].hasNaN() ? Vec3(state.v[p] + 0.5 * h * a)
+                                                     : Vec3(state.v[p] - offset_[p] + kick * a);
+    state.x[p] += h * v_half;  // drift
     offset_[p] = 0.5 * h * a;
     state.v[p] = v_half + offset_[p];  // v(t+h) + O(h²)
   }

@@ -3,10 +3,9 @@
 // Störmer–Verlet method: second order, one force evaluation per step, symplectic, so on an
 // undamped oscillator the energy error stays bounded, O((ωh)²), and they are stable for ωh < 2
 // (Hairer, Lubich & Wanner, "Geometric numerical integration illustrated by the Störmer–Verlet
-// method", Acta Numerica 12, 2003). They
-// differ in what they keep between steps and so in how they take edits made to the state from
-// outside (stretch limiting, pins, rollbacks). A pinned particle (inverse mass 0) never moves
-// and keeps v = 0.
+// method", Acta Numerica 12, 2003). They differ in what they keep between steps and so in how
+// they take edits made to the state from outside (stretch limiting, pins, rollbacks). A pinned
+// particle (inverse mass 0) never moves and keeps v = 0; once unpinned it starts afresh.
 
 #include "core/integrator.hpp"
 
@@ -32,7 +31,7 @@ namespace felt {
 ///   velocity feeds only velocity-dependent forces (damping) at the next step; being second
 ///   order it keeps the scheme second order with damping.
 /// - A velocity edited from outside (state.v differs from what the last step wrote) restarts
-///   that particle as at the start, from the new velocity.
+///   that particle as at the start, from the new velocity; so does unpinning a particle.
 class PositionVerlet final : public Integrator {
  public:
   std::string_view name() const override { return "verlet"; }
@@ -42,7 +41,8 @@ class PositionVerlet final : public Integrator {
  private:
   std::vector<Vec3> force_;
   std::vector<Vec3> x_prev_;  ///< positions one step back
-  std::vector<Vec3> v_out_;   ///< the velocities the last step wrote, to notice edits
+  std::vector<Vec3> v_out_;   ///< the velocities the last step wrote, to notice edits; NaN
+                              ///< for a pinned particle, which no velocity equals
   Real h_prev_ = 0;           ///< the last step size; 0: no history, start afresh
 };
 
@@ -86,7 +86,8 @@ class Leapfrog final : public Integrator {
 
  private:
   std::vector<Vec3> force_;
-  std::vector<Vec3> offset_;  ///< state.v − v(t−½h_prev) = ½h_prev a(t−h_prev)
+  std::vector<Vec3> offset_;  ///< state.v − v(t−½h_prev) = ½h_prev a(t−h_prev); NaN for a
+                              ///< pinned particle: it starts afresh when unpinned
   Real h_prev_ = 0;           ///< the last step size; 0: no half-step velocity yet
 };
 

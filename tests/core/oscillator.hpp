@@ -19,7 +19,8 @@ class Oscillator final : public DynamicSystem {
   /// One particle of mass `mass`.
   Oscillator(Real mass, Real stiffness, Vec3 push = Vec3::Zero(), Real damping = 0)
       : Oscillator(std::vector<Real>{1 / mass}, stiffness, push, damping) {}
-  /// As many particles as inverse masses.
+  /// As many particles as inverse masses. (Spell one particle std::vector<Real>{m⁻¹}: a braced
+  /// single value would pick the constructor above.)
   Oscillator(std::vector<Real> inv_mass, Real stiffness, Vec3 push = Vec3::Zero(), Real damping = 0)
       : inv_mass_(std::move(inv_mass)), stiffness_(stiffness), push_(push), damping_(damping) {}
 
@@ -35,6 +36,8 @@ class Oscillator final : public DynamicSystem {
     return 0.5 / inv_mass_[0] * s.v[0].squaredNorm() + 0.5 * stiffness_ * s.x[0].squaredNorm();
   }
   int evaluations() const { return evaluations_; }
+  /// Pins (0) or unpins particle p, as ClothBody::pin and unpin do.
+  void set_inv_mass(std::size_t p, Real inv_mass) { inv_mass_[p] = inv_mass; }
 
  private:
   std::vector<Real> inv_mass_;

@@ -158,6 +158,24 @@ TEST(VerletIntegrators, PinnedParticleNeverMoves) {
   }
 }
 
+TEST(VerletIntegrators, AnUnpinnedParticleStartsAfresh) {
+  // pinned for 100 steps under gravity, then released: it falls ½ g τ² from where it was held
+  const Real h = 1e-3;
+  for (const auto& integrator : verlet_family()) {
+    Oscillator falling(std::vector<Real>{0}, 0, kMass * kGravity);  // pinned
+    const Vec3 held(0, 1, 0);
+    ParticleState state = start_at(held);
+    for (int n = 0; n < 100; ++n) integrator->step(falling, state, n * h, h);
+    falling.set_inv_mass(0, 1 / kMass);
+    for (int n = 100; n < 300; ++n) integrator->step(falling, state, n * h, h);
+    const Real tau = 200 * h;
+    EXPECT_NEAR((state.x[0] - (held + 0.5 * kGravity * tau * tau)).norm(), 0, rounding(*integrator))
+        << integrator->name();
+    EXPECT_NEAR((state.v[0] - kGravity * tau).norm(), 0, rounding(*integrator))
+        << integrator->name();
+  }
+}
+
 TEST(VerletIntegrators, AVelocityEditedFromOutsideTakesEffect) {
   // as stretch limiting or a "stop" does between steps, without reset(): falling for 100 steps,
   // stopped, then falling again must follow ½ g τ² from where it was stopped
