@@ -1,4 +1,5 @@
-// Cost of one world step of an n × n hanging cloth, per integrator (thesis 1 Table 9.x sizes).
+// Cost of one world step of an n × n hanging cloth, per integrator (the cloth sizes of thesis 1
+// chapter 9, and 100 × 100), health checks and normals included.
 
 #include <benchmark/benchmark.h>
 
@@ -37,13 +38,17 @@ void step(benchmark::State& state, std::string_view integrator) {
   state.counters["triangles"] = 2.0 * (n - 1) * (n - 1);
 }
 
-BENCHMARK_CAPTURE(step, explicit_euler, "explicit_euler")
+// schemes that are stable on this cloth at h = 0.25 ms (explicit Euler is not: its failed
+// steps would be retried with substeps and the benchmark would time the rescue)
+BENCHMARK_CAPTURE(step, symplectic_euler, "symplectic_euler")
     ->Arg(10)
     ->Arg(20)
     ->Arg(40)
     ->Arg(50)
     ->Arg(100);
-BENCHMARK_CAPTURE(step, symplectic_euler, "symplectic_euler")
+BENCHMARK_CAPTURE(step, verlet, "verlet")->Arg(10)->Arg(20)->Arg(40)->Arg(50)->Arg(100);
+BENCHMARK_CAPTURE(step, rk4, "rk4")->Arg(10)->Arg(20)->Arg(40)->Arg(50)->Arg(100);
+BENCHMARK_CAPTURE(step, implicit_euler, "implicit_euler")
     ->Arg(10)
     ->Arg(20)
     ->Arg(40)
