@@ -31,10 +31,18 @@ struct ServeOptions {
 
 struct RunOptions {
   std::string scene;
+  std::string scene_dir;
   std::uint64_t steps = 0;
   std::vector<std::string> overrides;
   std::string stats_json;
 };
+
+/// Mesh files of a scene resolve inside the scene directory, as they do for clients.
+felt::SceneLoadOptions scene_options(const std::filesystem::path& scene_dir) {
+  felt::SceneLoadOptions options;
+  options.asset_root = scene_dir;
+  return options;
+}
 
 /// Prints one status line a second for the first scene: what `scripts/run` shows.
 void print_status(felt::SceneRegistry& scenes, SceneId scene, felt::net::Server& server,
@@ -60,7 +68,7 @@ int serve(const ServeOptions& options) {
       scenes, felt::SceneDirectory(options.scene_dir), {}, FELT_VERSION};
   context.options.token = options.token;
   for (const std::string& file : options.scenes) {
-    auto scene = felt::load_scene_file(file);
+    auto scene = felt::load_scene_file(file, scene_options(options.scene_dir));
     if (!scene) {
       std::cerr << "feltd: " << file << ": " << scene.error().what() << "\n";
       return 2;
@@ -158,7 +166,12 @@ int run(const RunOptions& options) {
       return 2;
     }
   }
-  auto scene = felt::load_scene(*document);
+  // without --scene-dir, meshes are looked up beside the scene file
+  const std::filesystem::path beside = std::filesystem::path(options.scene).parent_path();
+  auto scene = felt::load_scene(
+      *document, scene_options(!options.scene_dir.empty() ? std::filesystem::path(options.scene_dir)
+                               : beside.empty()           ? std::filesystem::path(".")
+                                                          : beside));
   if (!scene) {
     std::cerr << "feltd: " << options.scene << ": " << scene.error().what() << "\n";
     return 2;
@@ -214,6 +227,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option(
       "--set", run_options.overrides,
       "KEY=VALUE override, KEY a dotted path (bodies.0.integrator), VALUE JSON or a string");
+  run_cmd->add_option("--scene-dir", run_options.scene_dir,
+                      "Directory mesh files resolve in (default: the scene file's directory)");
   run_cmd->add_option("--stats-json", run_options.stats_json, "Write run statistics to this file");
 
   CLI11_PARSE(app, argc, argv);

@@ -92,6 +92,18 @@ bool ClothBody::compute_jacobian(std::span<const Vec3> x, std::span<const Vec3> 
   return true;
 }
 
+bool ClothBody::linear_force_pairs(std::vector<LinearPair>& pairs) const {
+  pairs.clear();
+  const SpringParams& sp = params_.spring(SpringKind::kStructural);
+  if (!sp.enabled) return false;
+  // −k_s (|l| − r) l̂ = −k_s l + k_s r l̂: the first term is linear with a constant coefficient,
+  // the second (and the transverse rest of the damping) stays in compute_forces, explicit
+  for (const Spring& s : model_->springs) {
+    if (s.kind == SpringKind::kStructural) pairs.push_back({s.i, s.j, sp.stiffness, sp.damping});
+  }
+  return !pairs.empty();
+}
+
 void ClothBody::refresh_normals() {
   const ClothModel& model = *model_;
   face_normals_.resize(model.triangles.size());

@@ -71,6 +71,9 @@ class ClothBody final : public DynamicSystem {
                       std::span<Vec3> f) const override;
   bool compute_jacobian(std::span<const Vec3> x, std::span<const Vec3> v,
                         ForceJacobian& jacobian) const override;
+  /// The enabled structural springs' linear part −k_s l and their damping, taken isotropic
+  /// (Eberhardt et al. 2000, thesis 1 §4.4); shear and bend stay explicit.
+  bool linear_force_pairs(std::vector<LinearPair>& pairs) const override;
 
  private:
   std::string name_;

@@ -1,8 +1,10 @@
 #pragma once
 
 #include <span>
+#include <vector>
 
 #include "core/force_jacobian.hpp"
+#include "core/linear_pair.hpp"
 #include "core/types.hpp"
 
 namespace felt {
@@ -24,6 +26,14 @@ class DynamicSystem {
   /// implicit integrators then refuse them.
   virtual bool compute_jacobian(std::span<const Vec3> /*x*/, std::span<const Vec3> /*v*/,
                                 ForceJacobian& /*jacobian*/) const {
+    return false;
+  }
+
+  /// Replaces `pairs` with the constant, linear part of the forces that an IMEX scheme treats
+  /// implicitly (see LinearPair). The rest of compute_forces is then explicit. False when the
+  /// system has none.
+  virtual bool linear_force_pairs(std::vector<LinearPair>& pairs) const {
+    pairs.clear();
     return false;
   }
 };

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "core/explicit_integrators.hpp"
+#include "core/imex_integrator.hpp"
 #include "core/implicit_euler.hpp"
 #include "core/runge_kutta_integrators.hpp"
 #include "core/verlet_integrators.hpp"
@@ -30,6 +31,7 @@ constexpr std::array kIntegrators{
     Entry{"velocity_verlet", &make_one<VelocityVerlet>},
     Entry{"leapfrog", &make_one<Leapfrog>},
     Entry{"implicit_euler", &make_one<ImplicitEuler>},
+    Entry{"imex", &make_one<ImexIntegrator>},
 };
 
 }  // namespace

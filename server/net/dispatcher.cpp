@@ -68,7 +68,9 @@ void handle_load_scene(Session& session, std::uint64_t request_id, const v1::Loa
         "the server already runs " + std::to_string(context.options.max_scenes) + " scenes");
     return;
   }
-  const SceneLimits limits{context.options.max_particles_per_scene};
+  SceneLoadOptions options;
+  options.max_particles = context.options.max_particles_per_scene;
+  options.asset_root = context.scene_directory.root();
   std::expected<Scene, SceneError> scene = std::unexpected(SceneError{"", "no scene given"});
   switch (load.source_case()) {
     case v1::LoadScene::kName: {
@@ -77,7 +79,7 @@ void handle_load_scene(Session& session, std::uint64_t request_id, const v1::Loa
         session.send_error(request_id, v1::ERROR_CODE_NOT_FOUND, file.error());
         return;
       }
-      scene = load_scene_file(*file, limits);
+      scene = load_scene_file(*file, options);
       if (!scene) {
         // the client named the scene; it has no business learning the server's paths
         SceneError& error = scene.error();
@@ -88,7 +90,7 @@ void handle_load_scene(Session& session, std::uint64_t request_id, const v1::Loa
       break;
     }
     case v1::LoadScene::kJson:
-      scene = load_scene_text(load.json(), limits);
+      scene = load_scene_text(load.json(), options);
       break;
     case v1::LoadScene::SOURCE_NOT_SET:
       session.send_error(request_id, v1::ERROR_CODE_BAD_REQUEST, "LoadScene needs a name or json");

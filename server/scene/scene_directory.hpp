@@ -8,6 +8,12 @@
 
 namespace felt {
 
+/// The regular file `relative` ("meshes/bunny.obj") inside `root`: relative, made of letters,
+/// digits, '_', '-', '.' and '/', no "." or ".." part, and not leading (through links) outside
+/// `root`. Errors are fit for a client: they name `relative`, never the server's paths.
+std::expected<std::filesystem::path, std::string> resolve_inside(const std::filesystem::path& root,
+                                                                 std::string_view relative);
+
 class SceneDirectory {
  public:
   explicit SceneDirectory(std::filesystem::path root);

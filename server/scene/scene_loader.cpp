@@ -4,11 +4,15 @@
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "core/cloth_grid.hpp"
+#include "core/mesh_cloth.hpp"
+#include "scene/obj_reader.hpp"
+#include "scene/scene_directory.hpp"
 
 namespace felt {
 namespace {
@@ -175,11 +179,20 @@ ClothParams read_springs(const ObjectReader& body) {
   return params;
 }
 
-std::vector<std::uint32_t> read_pins(const ObjectReader& body, const GridClothSpec& spec) {
-  if (!body.has("pin")) return grid_pin_indices(spec, GridPinPreset::kTopCorners);
+/// Pins of a body with `n` particles; presets need the grid they refer to.
+std::vector<std::uint32_t> read_pins(const ObjectReader& body, const GridClothSpec* grid,
+                                     std::size_t n) {
+  if (!body.has("pin")) {
+    return grid ? grid_pin_indices(*grid, GridPinPreset::kTopCorners)
+                : std::vector<std::uint32_t>{};
+  }
   const json& pin = body.at("pin");
   const std::string path = body.path_of("pin");
+  if (pin.is_string() && pin.get<std::string>() == "none") return {};
+  if (pin.is_string() && !grid)
+    fail(path, "a mesh cloth takes \"none\" or a list of particle indices");
   if (pin.is_string()) {
+    const GridClothSpec& spec = *grid;
     const std::pair<std::string_view, GridPinPreset> presets[] = {
         {"none", GridPinPreset::kNone},
         {"four_corners", GridPinPreset::kFourCorners},
@@ -191,7 +204,6 @@ std::vector<std::uint32_t> read_pins(const ObjectReader& body, const GridClothSp
     fail(path, "must be none, four_corners, top_corners, top_row or a list of particle indices");
   }
   if (!pin.is_array()) fail(path, "must be a preset name or a list of particle indices");
-  const std::size_t n = std::size_t{spec.nx} * spec.ny;
   std::vector<std::uint32_t> indices;
   for (std::size_t i = 0; i < pin.size(); ++i) {
     if (!pin[i].is_number_integer() || pin[i].get<std::int64_t>() < 0 ||
@@ -203,34 +215,83 @@ std::vector<std::uint32_t> read_pins(const ObjectReader& body, const GridClothSp
   return indices;
 }
 
-ClothBody read_cloth(const ObjectReader& body, std::size_t index, std::size_t& particles_left) {
-  if (!body.has("grid")) fail(body.path_of("grid"), "is required for a cloth");
-  const GridClothSpec spec = [&] {
-    GridClothSpec s = read_grid(body);
-    s.total_mass = body.positive("mass", 1);
-    return s;
-  }();
-  // checked before anything is allocated for the body
-  const std::size_t particles = std::size_t{spec.nx} * spec.ny;
+/// Counts `particles` against what the scene's limit has left.
+void take_particles(const std::string& path, std::size_t particles, std::size_t& particles_left) {
   if (particles > particles_left) {
-    fail(body.path_of("grid"), std::to_string(particles) + " particles exceed the " +
-                                   std::to_string(particles_left) +
-                                   " the scene's particle limit leaves");
+    fail(path, std::to_string(particles) + " particles exceed the " +
+                   std::to_string(particles_left) + " the scene's particle limit leaves");
   }
   particles_left -= particles;
+}
+
+Transform read_transform(const ObjectReader& reader) {
+  Transform transform;
+  if (!reader.has("transform")) return transform;
+  const ObjectReader t(reader.at("transform"), reader.path_of("transform"),
+                       {"rotate", "scale", "translate"});
+  transform.rotate_degrees = t.vec3("rotate", transform.rotate_degrees);
+  if (t.has("scale") && t.at("scale").is_number()) {
+    transform.scale = Vec3::Constant(t.positive("scale", 1));
+  } else {
+    transform.scale = t.vec3("scale", transform.scale);
+    if ((transform.scale.array() <= 0).any()) fail(t.path_of("scale"), "must be > 0");
+  }
+  transform.translate = t.vec3("translate", transform.translate);
+  return transform;
+}
+
+/// A cloth from an OBJ file inside the asset root, transformed.
+ClothModel read_mesh_model(const ObjectReader& body, const SceneLoadOptions& options,
+                           Real total_mass, std::size_t& particles_left) {
+  const ObjectReader mesh(body.at("mesh"), body.path_of("mesh"), {"file", "transform"});
+  if (!mesh.has("file")) fail(mesh.path_of("file"), "is required");
+  if (options.asset_root.empty()) {
+    fail(mesh.path_of("file"), "meshes can only be loaded from scenes in the scene directory");
+  }
+  const std::string name = mesh.string("file", "");
+  const auto file = resolve_inside(options.asset_root, name);
+  if (!file) fail(mesh.path_of("file"), file.error());
+  auto triangles = read_obj_file(*file);
+  if (!triangles) fail(mesh.path_of("file"), triangles.error());
+  take_particles(mesh.path_of("file"), triangles->positions.size(), particles_left);
+  const Transform transform = read_transform(mesh);
+  for (Vec3& p : triangles->positions) p = transform.apply(p);
+  return make_mesh_cloth(*triangles, total_mass);
+}
+
+ClothBody read_cloth(const ObjectReader& body, std::size_t index, const SceneLoadOptions& options,
+                     std::size_t& particles_left) {
+  if (body.has("grid") == body.has("mesh")) {
+    fail(body.path_of("grid"), "a cloth needs exactly one of \"grid\" and \"mesh\"");
+  }
+  const Real total_mass = body.positive("mass", 1);
+  std::optional<GridClothSpec> grid;
+  std::shared_ptr<const ClothModel> model;
+  if (body.has("grid")) {
+    grid = read_grid(body);
+    grid->total_mass = total_mass;
+    // checked before anything is allocated for the body
+    take_particles(body.path_of("grid"), std::size_t{grid->nx} * grid->ny, particles_left);
+    model = std::make_shared<const ClothModel>(make_grid_cloth(*grid));
+  } else {
+    model = std::make_shared<const ClothModel>(
+        read_mesh_model(body, options, total_mass, particles_left));
+  }
   const std::string integrator_name = body.string("integrator", "symplectic_euler");
   auto integrator = make_integrator(integrator_name);
   if (!integrator) {
     std::string known;
-    for (std::string_view name : integrator_names())
+    for (std::string_view name : integrator_names()) {
       known += (known.empty() ? "" : ", ") + std::string(name);
+    }
     fail(body.path_of("integrator"),
          "unknown integrator \"" + integrator_name + "\" (known: " + known + ")");
   }
-  ClothBody cloth(body.string("name", "cloth" + std::to_string(index)),
-                  std::make_shared<const ClothModel>(make_grid_cloth(spec)), read_springs(body),
+  ClothBody cloth(body.string("name", "cloth" + std::to_string(index)), model, read_springs(body),
                   std::move(integrator));
-  for (std::uint32_t p : read_pins(body, spec)) cloth.pin(p);
+  for (std::uint32_t p : read_pins(body, grid ? &*grid : nullptr, model->particle_count())) {
+    cloth.pin(p);
+  }
   return cloth;
 }
 
@@ -267,7 +328,7 @@ Collider read_collider(const json& value, const std::string& path) {
   return c;
 }
 
-Scene read_scene(const json& document, const SceneLimits& limits) {
+Scene read_scene(const json& document, const SceneLoadOptions& options) {
   const ObjectReader root(
       document, "",
       {"name", "time_step", "gravity", "max_speed", "haptics", "colliders", "bodies"});
@@ -296,23 +357,23 @@ Scene read_scene(const json& document, const SceneLimits& limits) {
   if (!root.has("bodies")) return scene;
   const json& bodies = root.at("bodies");
   if (!bodies.is_array()) fail("bodies", "must be an array");
-  std::size_t particles_left = limits.max_particles;
+  std::size_t particles_left = options.max_particles;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const ObjectReader body(bodies[i], element("bodies", i),
-                            {"name", "type", "grid", "mass", "springs", "drag", "stretch_limit",
-                             "thickness", "integrator", "pin"});
+                            {"name", "type", "grid", "mesh", "mass", "springs", "drag",
+                             "stretch_limit", "thickness", "integrator", "pin"});
     const std::string type = body.string("type", "");
     if (type != "cloth") fail(body.path_of("type"), "must be \"cloth\"");
-    scene.world.add_body(read_cloth(body, i, particles_left));
+    scene.world.add_body(read_cloth(body, i, options, particles_left));
   }
   return scene;
 }
 
 }  // namespace
 
-std::expected<Scene, SceneError> load_scene(const json& document, const SceneLimits& limits) {
+std::expected<Scene, SceneError> load_scene(const json& document, const SceneLoadOptions& options) {
   try {
-    return read_scene(document, limits);
+    return read_scene(document, options);
   } catch (const Failure& failure) {
     return std::unexpected(failure.error);
   }
@@ -327,10 +388,11 @@ std::expected<json, SceneError> parse_json(std::string_view text, const std::str
   }
 }
 
-std::expected<Scene, SceneError> load_scene_text(std::string_view text, const SceneLimits& limits) {
+std::expected<Scene, SceneError> load_scene_text(std::string_view text,
+                                                 const SceneLoadOptions& options) {
   const auto document = parse_json(text, "the scene");
   if (!document) return std::unexpected(document.error());
-  return load_scene(*document, limits);
+  return load_scene(*document, options);
 }
 
 std::expected<json, SceneError> read_scene_json(const std::filesystem::path& file) {
@@ -342,10 +404,10 @@ std::expected<json, SceneError> read_scene_json(const std::filesystem::path& fil
 }
 
 std::expected<Scene, SceneError> load_scene_file(const std::filesystem::path& file,
-                                                 const SceneLimits& limits) {
+                                                 const SceneLoadOptions& options) {
   const auto document = read_scene_json(file);
   if (!document) return std::unexpected(document.error());
-  return load_scene(*document, limits);
+  return load_scene(*document, options);
 }
 
 }  // namespace felt

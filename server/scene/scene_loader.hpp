@@ -21,17 +21,21 @@ struct SceneError {
   std::string what() const { return path.empty() ? message : path + ": " + message; }
 };
 
-/// Bounds on what a scene may ask for, checked before memory is allocated for it.
-struct SceneLimits {
+/// What a scene may ask for and where its files come from.
+struct SceneLoadOptions {
+  /// checked before memory is allocated for a body
   std::size_t max_particles = 4'000'000;
+  /// Meshes ("mesh": {"file": ...}) resolve inside this directory and never outside it; empty:
+  /// the scene may not load files (inline scenes from clients).
+  std::filesystem::path asset_root;
 };
 
 std::expected<Scene, SceneError> load_scene(const nlohmann::json& document,
-                                            const SceneLimits& limits = {});
+                                            const SceneLoadOptions& options = {});
 std::expected<Scene, SceneError> load_scene_text(std::string_view text,
-                                                 const SceneLimits& limits = {});
+                                                 const SceneLoadOptions& options = {});
 std::expected<Scene, SceneError> load_scene_file(const std::filesystem::path& file,
-                                                 const SceneLimits& limits = {});
+                                                 const SceneLoadOptions& options = {});
 
 /// Parses JSON text; `source` names it in the error.
 std::expected<nlohmann::json, SceneError> parse_json(std::string_view text,

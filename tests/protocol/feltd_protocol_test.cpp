@@ -27,7 +27,9 @@ class FeltdTest : public ::testing::Test {
  protected:
   void SetUp() override { server_ = std::make_unique<FeltdProcess>(default_args()); }
   void TearDown() override {
-    if (server_ && server_->running()) EXPECT_EQ(server_->stop(SIGTERM, 5s), 0);
+    if (server_ && server_->running()) {
+      EXPECT_EQ(server_->stop(SIGTERM, 5s), 0);
+    }
   }
   void connect(Client& client) { client.connect("127.0.0.1", server_->port()); }
 

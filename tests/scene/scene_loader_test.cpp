@@ -21,7 +21,9 @@ std::string error_of(const json& document) {
 }
 
 std::string error_of_limited(const json& document, std::size_t max_particles) {
-  const auto scene = load_scene(document, SceneLimits{max_particles});
+  SceneLoadOptions options;
+  options.max_particles = max_particles;
+  const auto scene = load_scene(document, options);
   return scene ? std::string("(loaded)") : scene.error().what();
 }
 
@@ -113,7 +115,9 @@ TEST(SceneLoader, NumbersNoDoubleHoldsAreAnErrorNotACrash) {
 TEST(SceneLoader, ParticleLimitIsCheckedBeforeBuilding) {
   json doc = minimal_cloth();
   doc["bodies"].push_back(doc["bodies"][0]);  // two bodies of 12 particles
-  EXPECT_TRUE(load_scene(doc, SceneLimits{24}));
+  SceneLoadOptions enough;
+  enough.max_particles = 24;
+  EXPECT_TRUE(load_scene(doc, enough));
   EXPECT_EQ(error_of_limited(doc, 20),
             "bodies[1].grid: 12 particles exceed the 8 the scene's particle limit leaves");
 }
@@ -133,6 +137,53 @@ TEST(SceneLoader, ReadsCollidersAndNamesTheirBadValues) {
   EXPECT_EQ(error_of(doc), "colliders[0].normal: must not be zero");
   doc["colliders"] = json::parse(R"([{"type": "cone"}])");
   EXPECT_EQ(error_of(doc), "colliders[0].type: must be plane, sphere, box or capsule");
+}
+
+TEST(SceneLoader, MeshClothFromAnObjInsideTheAssetRoot) {
+  json doc = json::parse(R"({"bodies": [{"type": "cloth", "mass": 0.5, "pin": [0, 5],
+    "mesh": {"file": "meshes/bunny.obj",
+             "transform": {"scale": 0.02, "translate": [0, 1, 0]}}}]})");
+  SceneLoadOptions options;
+  options.asset_root = FELT_SCENE_DIR;
+  const auto scene = load_scene(doc, options);
+  ASSERT_TRUE(scene) << scene.error().what();
+  const ClothBody& bunny = scene->world.bodies()[0];
+  EXPECT_EQ(bunny.model().particle_count(), 1839u);
+  EXPECT_EQ(bunny.model().triangles.size(), 3674u);
+  EXPECT_TRUE(bunny.is_pinned(5));
+  // the bunny is about 10 units tall with its base at y = 0: scaled to 0.2 m, lifted by 1 m
+  Real low = 1e9, high = -1e9;
+  for (const Vec3& p : bunny.state().x) {
+    low = std::min(low, p.y());
+    high = std::max(high, p.y());
+  }
+  EXPECT_NEAR(low, 1.0, 0.01);
+  EXPECT_NEAR(high - low, 0.2, 0.03);
+
+  doc["bodies"][0]["mesh"]["file"] = "../CMakeLists.txt";
+  EXPECT_NE(load_scene(doc, options).error().what().find("bodies[0].mesh.file: bad name"),
+            std::string::npos);
+  doc["bodies"][0]["mesh"]["file"] = "meshes/missing.obj";
+  EXPECT_EQ(load_scene(doc, options).error().what(),
+            "bodies[0].mesh.file: no file \"meshes/missing.obj\"");
+  doc["bodies"][0]["mesh"]["file"] = "meshes/bunny.obj";
+  EXPECT_NE(load_scene(doc).error().what().find("meshes can only be loaded"), std::string::npos);
+  doc["bodies"][0]["pin"] = "top_row";
+  EXPECT_NE(load_scene(doc, options).error().what().find("a mesh cloth takes"), std::string::npos);
+  doc["bodies"][0]["pin"] = "none";
+  doc["bodies"][0]["grid"] = json::object();
+  EXPECT_NE(load_scene(doc, options).error().what().find("exactly one of"), std::string::npos);
+}
+
+TEST(SceneLoader, EveryShippedSceneLoads) {
+  // what feltd run and a client's LoadScene by name would see
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(FELT_SCENE_DIR)) {
+    if (entry.path().extension() != ".json") continue;
+    SceneLoadOptions options;
+    options.asset_root = FELT_SCENE_DIR;
+    const auto scene = load_scene_file(entry.path(), options);
+    EXPECT_TRUE(scene) << entry.path() << ": " << scene.error().what();
+  }
 }
 
 TEST(SceneLoader, PinPresetsAndLists) {
