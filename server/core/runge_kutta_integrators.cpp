@@ -83,26 +83,22 @@ void RungeKutta4::step(const DynamicSystem& system, ParticleState& state, Real t
   size_buffers(n, dx_, dv_, x_stage_, v_stage_, dx_sum_, dv_sum_);
   // thesis 1 §4.2: k1 = F(X), k2 = F(X + ½h k1), k3 = F(X + ½h k2), k4 = F(X + h k3),
   // X(t+h) = X + h (k1 + 2 k2 + 2 k3 + k4)/6; the sums accumulate k1 + 2 k2 + 2 k3
-  derivative(system, state.x, state.v, t, dx_, dv_);
-  for (std::size_t p = 0; p < n; ++p) {
-    dx_sum_[p] = dx_[p];
-    dv_sum_[p] = dv_[p];
-    x_stage_[p] = state.x[p] + 0.5 * h * dx_[p];
-    v_stage_[p] = state.v[p] + 0.5 * h * dv_[p];
-  }
-  derivative(system, x_stage_, v_stage_, t + 0.5 * h, dx_, dv_);
-  for (std::size_t p = 0; p < n; ++p) {
-    dx_sum_[p] += 2 * dx_[p];
-    dv_sum_[p] += 2 * dv_[p];
-    x_stage_[p] = state.x[p] + 0.5 * h * dx_[p];
-    v_stage_[p] = state.v[p] + 0.5 * h * dv_[p];
-  }
-  derivative(system, x_stage_, v_stage_, t + 0.5 * h, dx_, dv_);
-  for (std::size_t p = 0; p < n; ++p) {
-    dx_sum_[p] += 2 * dx_[p];
-    dv_sum_[p] += 2 * dv_[p];
-    x_stage_[p] = state.x[p] + h * dx_[p];
-    v_stage_[p] = state.v[p] + h * dv_[p];
+  // stage s evaluates at t + offset[s]·h and enters the sum with weight[s]
+  constexpr Real kOffset[] = {0, 0.5, 0.5, 1};
+  constexpr Real kWeight[] = {1, 2, 2};
+  for (int stage = 0; stage < 3; ++stage) {
+    if (stage == 0) {
+      derivative(system, state.x, state.v, t, dx_, dv_);
+    } else {
+      derivative(system, x_stage_, v_stage_, t + kOffset[stage] * h, dx_, dv_);
+    }
+    const Real next = kOffset[stage + 1] * h;
+    for (std::size_t p = 0; p < n; ++p) {
+      dx_sum_[p] = (stage == 0 ? Vec3(Vec3::Zero()) : dx_sum_[p]) + kWeight[stage] * dx_[p];
+      dv_sum_[p] = (stage == 0 ? Vec3(Vec3::Zero()) : dv_sum_[p]) + kWeight[stage] * dv_[p];
+      x_stage_[p] = state.x[p] + next * dx_[p];
+      v_stage_[p] = state.v[p] + next * dv_[p];
+    }
   }
   derivative(system, x_stage_, v_stage_, t + h, dx_, dv_);
   const auto inv_mass = system.inv_mass();

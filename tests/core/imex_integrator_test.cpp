@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
+#include "cloth_fixtures.hpp"
 #include "core/cloth_body.hpp"
 #include "core/cloth_grid.hpp"
 #include "core/implicit_euler.hpp"
@@ -19,19 +20,8 @@
 namespace felt::test {
 namespace {
 
-/// Two particles joined by one structural spring of rest length `rest` along x, the first
-/// pinned at the origin. With rest 0 the force −k x is linear: IMEX has nothing explicit left.
 ClothBody spring_pair(Real mass, Real stiffness, Real rest, Real damping = 0) {
-  auto model = std::make_shared<ClothModel>();
-  model->rest_positions = {Vec3::Zero(), Vec3(rest, 0, 0)};
-  model->uv = {Vec2::Zero(), Vec2::Zero()};
-  model->mass = {mass, mass};
-  model->springs = {{0, 1, rest, SpringKind::kStructural}};
-  ClothParams params;
-  params.spring(SpringKind::kStructural) = {true, stiffness, damping};
-  ClothBody body("pair", model, params, make_integrator("imex"));
-  body.pin(0);
-  return body;
+  return test::spring_pair(mass, stiffness, rest, damping, "imex");
 }
 
 ImexIntegrator& imex_of(ClothBody& body) {

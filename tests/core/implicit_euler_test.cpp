@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cloth_fixtures.hpp"
 #include "core/cloth_body.hpp"
 #include "core/cloth_grid.hpp"
 #include "core/world.hpp"
@@ -15,19 +16,8 @@
 namespace felt {
 namespace {
 
-/// Two particles joined by one spring along x, the first pinned: a linear oscillator
-/// m ẍ = −k (x − r) for the second along the spring.
-ClothBody spring_pair(Real mass, Real stiffness, Real rest, Real damping = 0) {
-  auto model = std::make_shared<ClothModel>();
-  model->rest_positions = {Vec3::Zero(), Vec3(rest, 0, 0)};
-  model->uv = {Vec2::Zero(), Vec2::Zero()};
-  model->mass = {mass, mass};
-  model->springs = {{0, 1, rest, SpringKind::kStructural}};
-  ClothParams params;
-  params.spring(SpringKind::kStructural) = {true, stiffness, damping};
-  ClothBody body("pair", model, params, make_integrator("implicit_euler"));
-  body.pin(0);
-  return body;
+ClothBody spring_pair(Real mass, Real stiffness, Real rest) {
+  return test::spring_pair(mass, stiffness, rest, 0, "implicit_euler");
 }
 
 TEST(ClothJacobian, MatchesFiniteDifferencesOfTheForces) {

@@ -6,16 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include "cloth_fixtures.hpp"
 #include "core/sphere_contact.hpp"
 
 namespace felt {
 namespace {
 
-void expect_vec_near(const Vec3& got, const Vec3& want, Real tol) {
-  EXPECT_NEAR(got.x(), want.x(), tol);
-  EXPECT_NEAR(got.y(), want.y(), tol);
-  EXPECT_NEAR(got.z(), want.z(), tol);
-}
+using test::expect_vec_near;
 
 // The unit square [0, 1]² at z = 0, split along the diagonal 0-2, counter-clockwise from +z:
 // triangle 0 is below the diagonal (y < x), triangle 1 above it.

@@ -9,16 +9,13 @@
 
 #include <gtest/gtest.h>
 
+#include "cloth_fixtures.hpp"
 #include "core/triangle_geometry.hpp"
 
 namespace felt {
 namespace {
 
-void expect_vec_near(const Vec3& got, const Vec3& want, Real tol) {
-  EXPECT_NEAR(got.x(), want.x(), tol);
-  EXPECT_NEAR(got.y(), want.y(), tol);
-  EXPECT_NEAR(got.z(), want.z(), tol);
-}
+using test::expect_vec_near;
 
 // The result must be a point of the triangle, described by its own barycentric coordinates.
 void expect_consistent(const ClosestPoint& r, const Vec3& a, const Vec3& b, const Vec3& c) {
