@@ -19,7 +19,6 @@ ClothBody::ClothBody(std::string name, std::shared_ptr<const ClothModel> model, 
   inv_mass_.resize(n);
   for (std::size_t p = 0; p < n; ++p) inv_mass_[p] = 1 / model_->mass[p];
   external_force_.assign(n, Vec3::Zero());
-  refresh_normals();
 }
 
 void ClothBody::set_integrator(std::unique_ptr<Integrator> integrator) {
@@ -102,25 +101,6 @@ bool ClothBody::linear_force_pairs(std::vector<LinearPair>& pairs) const {
     if (s.kind == SpringKind::kStructural) pairs.push_back({s.i, s.j, sp.stiffness, sp.damping});
   }
   return !pairs.empty();
-}
-
-void ClothBody::refresh_normals() {
-  const ClothModel& model = *model_;
-  face_normals_.resize(model.triangles.size());
-  vertex_normals_.assign(model.particle_count(), Vec3::Zero());
-  for (std::size_t t = 0; t < model.triangles.size(); ++t) {
-    const Triangle& tri = model.triangles[t];
-    // the unnormalised cross product weighs each face by its area
-    const Vec3 area_normal =
-        (state_.x[tri[1]] - state_.x[tri[0]]).cross(state_.x[tri[2]] - state_.x[tri[0]]);
-    for (std::uint32_t corner : tri) vertex_normals_[corner] += area_normal;
-    const Real norm = area_normal.norm();
-    face_normals_[t] = norm > 0 ? Vec3(area_normal / norm) : Vec3::Zero();
-  }
-  for (Vec3& n : vertex_normals_) {
-    const Real norm = n.norm();
-    if (norm > 0) n /= norm;
-  }
 }
 
 Real ClothBody::kinetic_energy() const {

@@ -51,11 +51,6 @@ class ClothBody final : public DynamicSystem {
   void add_external_force(std::uint32_t p, const Vec3& force) { external_force_[p] += force; }
   void clear_external_forces();
 
-  /// Recomputes face normals and area-weighted vertex normals from the current positions.
-  void refresh_normals();
-  const std::vector<Vec3>& face_normals() const { return face_normals_; }
-  const std::vector<Vec3>& vertex_normals() const { return vertex_normals_; }
-
   /// Σ ½ m v² over all particles, J.
   Real kinetic_energy() const;
   /// Σ ½ k (|l| − r)² over the enabled springs, J.
@@ -84,8 +79,6 @@ class ClothBody final : public DynamicSystem {
   std::vector<Real> inv_mass_;
   Vec3 gravity_ = Vec3::Zero();
   std::vector<Vec3> external_force_;
-  std::vector<Vec3> face_normals_;
-  std::vector<Vec3> vertex_normals_;
 };
 
 }  // namespace felt

@@ -10,53 +10,61 @@ World::World(WorldSettings settings) : settings_(settings) {}
 std::uint32_t World::add_body(ClothBody body) {
   body.set_gravity(settings_.gravity);
   bodies_.push_back(std::move(body));
+  energy_valid_ = false;
   return static_cast<std::uint32_t>(bodies_.size() - 1);
 }
 
 StepReport World::step() {
   StepReport report;
-  for (ClothBody& body : bodies_) {
+  if (!energy_valid_) {
+    energy_.resize(bodies_.size());
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      energy_[b] = bodies_[b].kinetic_energy() + bodies_[b].elastic_energy();
+    }
+  }
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    ClothBody& body = bodies_[b];
     // copy-assignment into equally sized vectors reuses their storage: no allocation
     backup_.x = body.state().x;
     backup_.v = body.state().v;
-    const Real energy_before = body.kinetic_energy() + body.elastic_energy();
     int substeps = 1;
-    bool ok = try_step(body, substeps, energy_before);
+    bool ok = try_step(body, substeps, energy_[b]);
     for (int retry = 0; !ok && retry < settings_.max_substep_doublings; ++retry) {
       body.state().x = backup_.x;
       body.state().v = backup_.v;
       body.integrator().reset();
       substeps *= 2;
-      ok = try_step(body, substeps, energy_before);
+      ok = try_step(body, substeps, energy_[b]);
     }
     if (ok && substeps > 1) report.flags |= kStepRescued;
     if (!ok) {
       body.state().x = backup_.x;
       for (Vec3& v : body.state().v) v.setZero();
       body.integrator().reset();
+      energy_[b] = body.elastic_energy();
       report.flags |= kStepUnrecoverable;
     }
     report.max_substeps = std::max(report.max_substeps, substeps);
     body.clear_external_forces();
-    body.refresh_normals();
   }
+  energy_valid_ = true;
   ++step_count_;
   // advance by multiplication, not accumulation, so long runs keep an exact clock
   time_ = static_cast<Real>(step_count_) * settings_.time_step;
   return report;
 }
 
-bool World::try_step(ClothBody& body, int substeps, Real energy_before) {
+bool World::try_step(ClothBody& body, int substeps, Real& energy) {
   const Real h = settings_.time_step / substeps;
   for (int s = 0; s < substeps; ++s) {
     body.integrator().step(body, body.state(), time_ + s * h, h);
     limit_stretch(body.model(), body.inv_mass(), body.params().stretch, h, body.state());
     resolve_collisions(colliders_, body.inv_mass(), body.params().thickness, body.state());
   }
-  return healthy(body, energy_before);
+  return healthy(body, energy);
 }
 
-bool World::healthy(const ClothBody& body, Real energy_before) const {
+bool World::healthy(const ClothBody& body, Real& energy) const {
   const ParticleState& state = body.state();
   const Real max_speed_sq = settings_.max_speed * settings_.max_speed;
   Real work = 0;  // by gravity and external forces over the step
@@ -71,7 +79,9 @@ bool World::healthy(const ClothBody& body, Real energy_before) const {
   const Real growth = settings_.max_energy_growth;
   // the floor keeps rounding noise of a body at rest from counting as growth
   constexpr Real kEnergyFloor = 1e-9;
-  return energy_after <= growth * (energy_before + std::max(work, Real{0})) + kEnergyFloor;
+  if (energy_after > growth * (energy + std::max(work, Real{0})) + kEnergyFloor) return false;
+  energy = energy_after;
+  return true;
 }
 
 }  // namespace felt

@@ -42,7 +42,12 @@ class World {
 
   /// Adds a body and returns its index.
   std::uint32_t add_body(ClothBody body);
-  std::vector<ClothBody>& bodies() { return bodies_; }
+  /// Mutable access; anything that edits a body through it makes the next step recompute the
+  /// energies its health check starts from.
+  std::vector<ClothBody>& bodies() {
+    energy_valid_ = false;
+    return bodies_;
+  }
   void add_collider(const Collider& collider) { colliders_.push_back(collider); }
   const std::vector<Collider>& colliders() const { return colliders_; }
   const std::vector<ClothBody>& bodies() const { return bodies_; }
@@ -57,13 +62,18 @@ class World {
 
  private:
   /// Steps one body over [time_, time_ + h] in `substeps` equal parts; false when unhealthy.
-  /// `energy_before` is the body's kinetic plus elastic energy at the start.
-  bool try_step(ClothBody& body, int substeps, Real energy_before);
-  bool healthy(const ClothBody& body, Real energy_before) const;
+  /// `energy` holds the body's kinetic plus elastic energy at the start, and at the end when
+  /// the step was healthy.
+  bool try_step(ClothBody& body, int substeps, Real& energy);
+  bool healthy(const ClothBody& body, Real& energy) const;
 
   WorldSettings settings_;
   std::vector<ClothBody> bodies_;
   std::vector<Collider> colliders_;
+  /// kinetic + elastic energy of each body after the last step, reused as the next step's
+  /// starting energy unless bodies() was handed out in between
+  std::vector<Real> energy_;
+  bool energy_valid_ = false;
   ParticleState backup_;
   Real time_ = 0;
   std::uint64_t step_count_ = 0;

@@ -1,5 +1,7 @@
 #include "runtime/snapshot.hpp"
 
+#include "core/surface_normals.hpp"
+
 namespace felt {
 
 std::shared_ptr<const SceneSnapshot> make_snapshot(const World& world) {
@@ -9,8 +11,9 @@ std::shared_ptr<const SceneSnapshot> make_snapshot(const World& world) {
   snapshot->bodies.reserve(world.bodies().size());
   for (std::uint32_t id = 0; id < world.bodies().size(); ++id) {
     const ClothBody& body = world.bodies()[id];
-    snapshot->bodies.push_back(
-        {id, body.name(), body.shared_model(), body.state().x, body.vertex_normals()});
+    BodySnapshot& out = snapshot->bodies.emplace_back(
+        BodySnapshot{id, body.name(), body.shared_model(), body.state().x, {}});
+    compute_vertex_normals(out.positions, body.model().triangles, out.normals);
   }
   return snapshot;
 }
