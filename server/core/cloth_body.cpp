@@ -37,6 +37,12 @@ void ClothBody::unpin(std::uint32_t p) {
   inv_mass_[p] = 1 / model_->mass[p];
 }
 
+void ClothBody::constrain(ParticleConstraint::Kind kind, std::uint32_t p, const Vec3& direction) {
+  FELT_CHECK(p < inv_mass_.size() && direction.norm() > 0);
+  constraints_.push_back({kind, p, state_.x[p], direction.normalized()});
+  apply_constraints(std::span(constraints_).last(1), state_);
+}
+
 void ClothBody::clear_external_forces() {
   std::fill(external_force_.begin(), external_force_.end(), Vec3::Zero());
 }

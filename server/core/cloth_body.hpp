@@ -9,6 +9,7 @@
 #include "core/cloth_model.hpp"
 #include "core/dynamic_system.hpp"
 #include "core/integrator.hpp"
+#include "core/particle_constraint.hpp"
 #include "core/particle_state.hpp"
 #include "core/stretch_limiter.hpp"
 
@@ -43,6 +44,10 @@ class ClothBody final : public DynamicSystem {
   /// Fixes particle p where it is (inverse mass 0, velocity 0).
   void pin(std::uint32_t p);
   void unpin(std::uint32_t p);
+
+  /// Holds a particle in a plane or on a line through where it is now.
+  void constrain(ParticleConstraint::Kind kind, std::uint32_t p, const Vec3& direction);
+  const std::vector<ParticleConstraint>& constraints() const { return constraints_; }
   bool is_pinned(std::uint32_t p) const { return inv_mass_[p] == 0; }
 
   void set_gravity(const Vec3& gravity) { gravity_ = gravity; }
@@ -77,6 +82,7 @@ class ClothBody final : public DynamicSystem {
   std::unique_ptr<Integrator> integrator_;
   ParticleState state_;
   std::vector<Real> inv_mass_;
+  std::vector<ParticleConstraint> constraints_;
   Vec3 gravity_ = Vec3::Zero();
   std::vector<Vec3> external_force_;
 };

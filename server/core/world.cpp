@@ -60,6 +60,7 @@ bool World::try_step(ClothBody& body, int substeps, Real& energy) {
     body.integrator().step(body, body.state(), time_ + s * h, h);
     limit_stretch(body.model(), body.inv_mass(), body.params().stretch, h, body.state());
     resolve_collisions(colliders_, body.inv_mass(), body.params().thickness, body.state());
+    apply_constraints(body.constraints(), body.state());
   }
   return healthy(body, energy);
 }

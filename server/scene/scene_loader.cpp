@@ -215,6 +215,38 @@ std::vector<std::uint32_t> read_pins(const ObjectReader& body, const GridClothSp
   return indices;
 }
 
+/// "constraints": [{"type": "plane" | "line", "particles": [...], "normal" | "direction": [...]}]
+/// through each particle's start position.
+void read_constraints(const ObjectReader& body, ClothBody& cloth) {
+  if (!body.has("constraints")) return;
+  const json& list = body.at("constraints");
+  if (!list.is_array()) fail(body.path_of("constraints"), "must be an array");
+  const std::size_t n = cloth.model().particle_count();
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const ObjectReader c(list[i], element(body.path_of("constraints"), i),
+                         {"type", "particles", "normal", "direction"});
+    const std::string type = c.string("type", "");
+    if (type != "plane" && type != "line") fail(c.path_of("type"), "must be plane or line");
+    const bool plane = type == "plane";
+    const char* axis_key = plane ? "normal" : "direction";
+    const Vec3 axis = c.vec3(axis_key, Vec3::Zero());
+    if (axis.norm() == 0) fail(c.path_of(axis_key), "is required and must not be zero");
+    if (!c.has("particles") || !c.at("particles").is_array()) {
+      fail(c.path_of("particles"), "must be a list of particle indices");
+    }
+    const json& particles = c.at("particles");
+    for (std::size_t k = 0; k < particles.size(); ++k) {
+      if (!particles[k].is_number_integer() || particles[k].get<std::int64_t>() < 0 ||
+          particles[k].get<std::uint64_t>() >= n) {
+        fail(element(c.path_of("particles"), k),
+             "must be a particle index below " + std::to_string(n));
+      }
+      cloth.constrain(plane ? ParticleConstraint::Kind::kPlane : ParticleConstraint::Kind::kLine,
+                      particles[k].get<std::uint32_t>(), axis);
+    }
+  }
+}
+
 /// Counts `particles` against what the scene's limit has left.
 void take_particles(const std::string& path, std::size_t particles, std::size_t& particles_left) {
   if (particles > particles_left) {
@@ -292,6 +324,7 @@ ClothBody read_cloth(const ObjectReader& body, std::size_t index, const SceneLoa
   for (std::uint32_t p : read_pins(body, grid ? &*grid : nullptr, model->particle_count())) {
     cloth.pin(p);
   }
+  read_constraints(body, cloth);
   return cloth;
 }
 
@@ -361,7 +394,7 @@ Scene read_scene(const json& document, const SceneLoadOptions& options) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const ObjectReader body(bodies[i], element("bodies", i),
                             {"name", "type", "grid", "mesh", "mass", "springs", "drag",
-                             "stretch_limit", "thickness", "integrator", "pin"});
+                             "stretch_limit", "thickness", "integrator", "pin", "constraints"});
     const std::string type = body.string("type", "");
     if (type != "cloth") fail(body.path_of("type"), "must be \"cloth\"");
     scene.world.add_body(read_cloth(body, i, options, particles_left));

@@ -186,6 +186,27 @@ TEST(SceneLoader, EveryShippedSceneLoads) {
   }
 }
 
+TEST(SceneLoader, ReadsPlaneAndLineConstraints) {
+  json doc = minimal_cloth();
+  doc["bodies"][0]["constraints"] = json::parse(
+      R"([{"type": "line", "particles": [1, 2], "direction": [2, 0, 0]},
+          {"type": "plane", "particles": [5], "normal": [0, 0, 1]}])");
+  const auto scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  const auto& constraints = scene->world.bodies()[0].constraints();
+  ASSERT_EQ(constraints.size(), 3u);
+  EXPECT_EQ(constraints[1].particle, 2u);
+  EXPECT_EQ(constraints[1].direction, Vec3::UnitX());  // normalized
+  EXPECT_EQ(constraints[2].kind, ParticleConstraint::Kind::kPlane);
+
+  doc["bodies"][0]["constraints"][1]["normal"] = {0, 0, 0};
+  EXPECT_EQ(error_of(doc), "bodies[0].constraints[1].normal: is required and must not be zero");
+  doc["bodies"][0]["constraints"][1] =
+      json::parse(R"({"type": "line", "particles": [12], "direction": [1, 0, 0]})");
+  EXPECT_EQ(error_of(doc),
+            "bodies[0].constraints[1].particles[0]: must be a particle index below 12");
+}
+
 TEST(SceneLoader, PinPresetsAndLists) {
   json doc = minimal_cloth();
   doc["bodies"][0]["pin"] = "four_corners";
