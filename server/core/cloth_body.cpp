@@ -1,6 +1,7 @@
 #include "core/cloth_body.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/check.hpp"
 
@@ -47,7 +48,7 @@ void ClothBody::clear_external_forces() {
   std::fill(external_force_.begin(), external_force_.end(), Vec3::Zero());
 }
 
-void ClothBody::compute_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real /*t*/,
+void ClothBody::compute_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real t,
                                std::span<Vec3> f) const {
   const ClothModel& model = *model_;
   for (std::size_t p = 0; p < x.size(); ++p) {
@@ -65,6 +66,24 @@ void ClothBody::compute_forces(std::span<const Vec3> x, std::span<const Vec3> v,
         -(sp.stiffness * (length - s.rest_length) + sp.damping * (v[s.i] - v[s.j]).dot(dir)) * dir;
     f[s.i] += fs;
     f[s.j] -= fs;
+  }
+  if (params_.wind.enabled) add_wind_forces(x, v, t, f);
+}
+
+void ClothBody::add_wind_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real t,
+                                std::span<Vec3> f) const {
+  const Wind& wind = params_.wind;
+  const Vec3 w =
+      (1 + wind.gust_amplitude * std::sin(2 * M_PI * t / wind.gust_period)) * wind.velocity;
+  for (const Triangle& tri : model_->triangles) {
+    const Vec3 twice_area_normal = (x[tri[1]] - x[tri[0]]).cross(x[tri[2]] - x[tri[0]]);
+    const Real twice_area = twice_area_normal.norm();
+    if (twice_area == 0) continue;
+    const Vec3 n = twice_area_normal / twice_area;
+    const Vec3 relative = w - (v[tri[0]] + v[tri[1]] + v[tri[2]]) / 3;
+    // c A ((w − v)·n) n, a third to each corner; A = twice_area / 2
+    const Vec3 share = wind.drag_coefficient * twice_area / 6 * relative.dot(n) * n;
+    for (std::uint32_t corner : tri) f[corner] += share;
   }
 }
 

@@ -15,12 +15,25 @@
 
 namespace felt {
 
+/// Air moving past a cloth. Each triangle feels c·A·((w − v)·n) n, shared by its corners: w the
+/// wind velocity, v the triangle's mean velocity, n its unit normal, A its area, c the drag
+/// coefficient (about ½ρC_d ≈ 0.6 kg/m³ for air). Gusts scale w by 1 + a·sin(2πt/T) (the
+/// thesis's sin(t²) + ½ is not periodic and speeds up without bound, so a plain sine instead).
+struct Wind {
+  bool enabled = false;
+  Vec3 velocity = Vec3::Zero();  ///< m/s
+  Real drag_coefficient = 0.6;   ///< kg/m³
+  Real gust_amplitude = 0;       ///< a, relative
+  Real gust_period = 2;          ///< T, s
+};
+
 /// Force parameters of a cloth (thesis 1 §2).
 struct ClothParams {
   std::array<SpringParams, kSpringKindCount> springs;  ///< indexed by SpringKind
   Real drag = 0;                                       ///< viscous drag k_d: f = −k_d v, N·s/m
   StretchLimit stretch;                                ///< inverse dynamics after each step
   Real thickness = 0.005;  ///< m; how close particles may come to a collider
+  Wind wind;
 
   SpringParams& spring(SpringKind kind) { return springs[static_cast<int>(kind)]; }
   const SpringParams& spring(SpringKind kind) const { return springs[static_cast<int>(kind)]; }
@@ -76,6 +89,9 @@ class ClothBody final : public DynamicSystem {
   bool linear_force_pairs(std::vector<LinearPair>& pairs) const override;
 
  private:
+  void add_wind_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real t,
+                       std::span<Vec3> f) const;
+
   std::string name_;
   std::shared_ptr<const ClothModel> model_;
   ClothParams params_;

@@ -23,7 +23,7 @@ ClothModel make_grid_cloth(const GridClothSpec& spec) {
       const Real a = (u - 0.5) * spec.width;
       const Real b = (0.5 - v) * spec.height;
       const Vec3 local = spec.plane == GridClothSpec::Plane::kXY ? Vec3(a, b, 0) : Vec3(a, 0, -b);
-      model.rest_positions.push_back(spec.center + local);
+      model.rest_positions.push_back(spec.transform.apply(spec.center + local));
       model.uv.emplace_back(u, v);
     }
   }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/cloth_model.hpp"
+#include "core/triangle_mesh.hpp"
 
 namespace felt {
 
@@ -20,6 +21,9 @@ struct GridClothSpec {
   Real total_mass = 1;
   Vec3 center = Vec3::Zero();
   Plane plane = Plane::kXY;
+  /// applied to the laid-out grid (about the origin, after `center`), before rest lengths are
+  /// measured
+  Transform transform;
 };
 
 /// Builds the particles, the structural (±1), shear (diagonal) and bend (±2) springs and two

@@ -121,9 +121,25 @@ class ObjectReader {
 // Particles per body are capped so that a typo cannot ask for terabytes.
 constexpr std::uint32_t kMaxGridSide = 2048;
 
+Transform read_transform(const ObjectReader& reader) {
+  Transform transform;
+  if (!reader.has("transform")) return transform;
+  const ObjectReader t(reader.at("transform"), reader.path_of("transform"),
+                       {"rotate", "scale", "translate"});
+  transform.rotate_degrees = t.vec3("rotate", transform.rotate_degrees);
+  if (t.has("scale") && t.at("scale").is_number()) {
+    transform.scale = Vec3::Constant(t.positive("scale", 1));
+  } else {
+    transform.scale = t.vec3("scale", transform.scale);
+    if ((transform.scale.array() <= 0).any()) fail(t.path_of("scale"), "must be > 0");
+  }
+  transform.translate = t.vec3("translate", transform.translate);
+  return transform;
+}
+
 GridClothSpec read_grid(const ObjectReader& reader) {
   const ObjectReader grid(reader.at("grid"), reader.path_of("grid"),
-                          {"width", "height", "nx", "ny", "center", "plane"});
+                          {"width", "height", "nx", "ny", "center", "plane", "transform"});
   GridClothSpec spec;
   spec.width = grid.positive("width", 1);
   spec.height = grid.positive("height", 1);
@@ -138,6 +154,7 @@ GridClothSpec read_grid(const ObjectReader& reader) {
   } else {
     fail(grid.path_of("plane"), "must be \"xy\" (hanging) or \"xz\" (lying)");
   }
+  spec.transform = read_transform(grid);
   return spec;
 }
 
@@ -149,6 +166,16 @@ ClothParams read_springs(const ObjectReader& body) {
   params.spring(SpringKind::kBend) = {true, 5, 0.005};
   params.drag = body.non_negative("drag", 0.005);
   params.thickness = body.non_negative("thickness", params.thickness);
+  if (body.has("wind")) {
+    const ObjectReader wind(body.at("wind"), body.path_of("wind"),
+                            {"velocity", "drag_coefficient", "gust_amplitude", "gust_period"});
+    Wind& w = params.wind;
+    w.enabled = true;
+    w.velocity = wind.vec3("velocity", w.velocity);
+    w.drag_coefficient = wind.non_negative("drag_coefficient", w.drag_coefficient);
+    w.gust_amplitude = wind.non_negative("gust_amplitude", w.gust_amplitude);
+    w.gust_period = wind.positive("gust_period", w.gust_period);
+  }
   if (body.has("stretch_limit")) {
     const ObjectReader limit(
         body.at("stretch_limit"), body.path_of("stretch_limit"),
@@ -254,22 +281,6 @@ void take_particles(const std::string& path, std::size_t particles, std::size_t&
                    std::to_string(particles_left) + " the scene's particle limit leaves");
   }
   particles_left -= particles;
-}
-
-Transform read_transform(const ObjectReader& reader) {
-  Transform transform;
-  if (!reader.has("transform")) return transform;
-  const ObjectReader t(reader.at("transform"), reader.path_of("transform"),
-                       {"rotate", "scale", "translate"});
-  transform.rotate_degrees = t.vec3("rotate", transform.rotate_degrees);
-  if (t.has("scale") && t.at("scale").is_number()) {
-    transform.scale = Vec3::Constant(t.positive("scale", 1));
-  } else {
-    transform.scale = t.vec3("scale", transform.scale);
-    if ((transform.scale.array() <= 0).any()) fail(t.path_of("scale"), "must be > 0");
-  }
-  transform.translate = t.vec3("translate", transform.translate);
-  return transform;
 }
 
 /// A cloth from an OBJ file inside the asset root, transformed.
@@ -392,9 +403,10 @@ Scene read_scene(const json& document, const SceneLoadOptions& options) {
   if (!bodies.is_array()) fail("bodies", "must be an array");
   std::size_t particles_left = options.max_particles;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const ObjectReader body(bodies[i], element("bodies", i),
-                            {"name", "type", "grid", "mesh", "mass", "springs", "drag",
-                             "stretch_limit", "thickness", "integrator", "pin", "constraints"});
+    const ObjectReader body(
+        bodies[i], element("bodies", i),
+        {"name", "type", "grid", "mesh", "mass", "springs", "drag", "stretch_limit", "thickness",
+         "wind", "integrator", "pin", "constraints"});
     const std::string type = body.string("type", "");
     if (type != "cloth") fail(body.path_of("type"), "must be \"cloth\"");
     scene.world.add_body(read_cloth(body, i, options, particles_left));

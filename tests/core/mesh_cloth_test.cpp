@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/cloth_grid.hpp"
 #include "core/mesh_topology.hpp"
 
 namespace felt {
@@ -53,6 +54,16 @@ TEST(MeshCloth, UnusedVerticesStillGetMass) {
   const ClothModel model = make_mesh_cloth(mesh, 1.0);
   EXPECT_GT(model.mass[3], 0);
   EXPECT_NEAR(model.mass[3], model.mass[0], 1e-15);
+}
+
+TEST(ClothGridTransform, ScalingAGridScalesItsRestLengths) {
+  GridClothSpec spec;
+  spec.nx = spec.ny = 3;
+  spec.transform.scale = Vec3::Constant(2);
+  spec.transform.rotate_degrees = Vec3(90, 0, 0);  // hanging → lying
+  const ClothModel model = make_grid_cloth(spec);
+  EXPECT_NEAR(model.springs[0].rest_length, 1.0, 1e-12);  // 0.5 m spacing, doubled
+  for (const Vec3& p : model.rest_positions) EXPECT_NEAR(p.y(), 0, 1e-12);
 }
 
 TEST(Transform, RotatesThenScalesThenTranslates) {
