@@ -33,6 +33,8 @@ int limit_stretch(const ClothModel& model, std::span<const Real> inv_mass,
                   const StretchLimit& limit, Real h, ParticleState& state) {
   if (!limit.enabled) return 0;
   const Real max_factor = 1 + limit.max_strain;
+  // off (negative): a factor of 0 that no length is below
+  const Real min_factor = limit.max_compression < 0 ? 0 : 1 - limit.max_compression;
   if (limit.velocity_correction) correct_velocities(model, inv_mass, max_factor, state);
   if (!limit.position_correction) return 0;
 
@@ -44,14 +46,18 @@ int limit_stretch(const ClothModel& model, std::span<const Real> inv_mass,
       if (!limited(s)) continue;
       const Vec3 d = state.x[s.j] - state.x[s.i];
       const Real length = d.norm();
-      const Real allowed = max_factor * s.rest_length;
-      if (length <= allowed) continue;
+      // Provot 1995 shortens to s_max r; Fuhrmann et al. 2003 also lengthens to s_min r
+      Real target = max_factor * s.rest_length;
+      if (length <= target) {
+        target = min_factor * s.rest_length;
+        if (length >= target || length == 0) continue;
+      }
       const Real wi = inv_mass[s.i], wj = inv_mass[s.j];
       if (wi + wj == 0) continue;
       any = true;
-      // Provot 1995: shorten to the allowed length about the midpoint, or toward the fixed end;
-      // with unequal masses the lighter end moves more (the same point when masses are equal)
-      const Vec3 excess = (length - allowed) / length * d;
+      // about the midpoint, or toward the fixed end; with unequal masses the lighter end moves
+      // more (the same point when masses are equal)
+      const Vec3 excess = (length - target) / length * d;
       const Vec3 move_i = wi / (wi + wj) * excess;
       const Vec3 move_j = -wj / (wi + wj) * excess;
       state.x[s.i] += move_i;

@@ -183,6 +183,10 @@ ClothParams read_springs(const ObjectReader& body) {
     StretchLimit& stretch = params.stretch;
     stretch.enabled = limit.boolean("enabled", true);
     stretch.max_strain = limit.positive("max_strain", stretch.max_strain);
+    if (limit.has("max_compression")) {
+      stretch.max_compression = limit.non_negative("max_compression", 0);
+      if (stretch.max_compression >= 1) fail(limit.path_of("max_compression"), "must be < 1");
+    }
     stretch.iterations = static_cast<int>(limit.count("iterations", stretch.iterations, 1, 1000));
     stretch.position_correction = limit.boolean("position_correction", stretch.position_correction);
     stretch.velocity_correction = limit.boolean("velocity_correction", stretch.velocity_correction);
