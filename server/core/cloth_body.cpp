@@ -98,20 +98,13 @@ bool ClothBody::compute_jacobian(std::span<const Vec3> x, std::span<const Vec3> 
     const Vec3 d = x[s.i] - x[s.j];
     const Real length = d.norm();
     if (length <= Real{1e-12}) continue;
-    const Vec3 dir = d / length;
-    const Mat3 outer = dir * dir.transpose();
     // ∂f_i/∂x_i = −k [l̂l̂ᵀ + (1 − r/|l|)(I − l̂l̂ᵀ)] (Baraff & Witkin 1998; thesis 1 §4.3 writes
     // the same blocks up to sign convention). The transverse term is clamped at 0 for compressed
     // springs (Choi & Ko 2002) so the matrix stays negative semidefinite and CG applies.
+    // Damping acts along the spring only: ∂f_i/∂v_i = −k_d l̂l̂ᵀ (its position derivative is
+    // dropped, as Baraff & Witkin do).
     const Real transverse = std::max(Real{0}, 1 - s.rest_length / length);
-    ForceJacobian::Pair pair;
-    pair.i = s.i;
-    pair.j = s.j;
-    pair.dx = -sp.stiffness * (outer + transverse * (Mat3::Identity() - outer));
-    // damping acts along the spring only: ∂f_i/∂v_i = −k_d l̂l̂ᵀ (its position derivative is
-    // dropped, as Baraff & Witkin do)
-    pair.dv = -sp.damping * outer;
-    jacobian.add_pair(pair);
+    jacobian.add_pair({s.i, s.j, d / length, sp.stiffness, sp.stiffness * transverse, sp.damping});
   }
   return true;
 }

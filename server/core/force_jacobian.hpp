@@ -13,13 +13,22 @@ namespace felt {
 
 class ForceJacobian {
  public:
-  /// A force between particles i and j that depends on x_i − x_j and v_i − v_j. `dx` is
-  /// ∂f_i/∂x_i = ∂f_j/∂x_j = −∂f_i/∂x_j = −∂f_j/∂x_i (symmetric); `dv` likewise for velocities.
+  /// A central force between particles i and j that depends on x_i − x_j and v_i − v_j along
+  /// the unit direction l̂:
+  ///   ∂f_i/∂x_i = −(axial l̂l̂ᵀ + transverse (I − l̂l̂ᵀ)),   ∂f_i/∂v_i = −damping l̂l̂ᵀ,
+  /// and ∂f_j/∂x_j = ∂f_i/∂x_i = −∂f_i/∂x_j = −∂f_j/∂x_i (likewise for velocities). Stored as
+  /// these scalars rather than as 3×3 blocks: a third of the memory traffic in every CG
+  /// iteration.
   struct Pair {
     std::uint32_t i = 0;
     std::uint32_t j = 0;
-    Mat3 dx = Mat3::Zero();
-    Mat3 dv = Mat3::Zero();
+    Vec3 direction = Vec3::UnitX();
+    Real axial = 0;
+    Real transverse = 0;
+    Real damping = 0;
+
+    Mat3 dx() const;
+    Mat3 dv() const;
   };
 
   /// Empties the Jacobian for `particles` particles, keeping the storage.
