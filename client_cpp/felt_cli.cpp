@@ -91,6 +91,23 @@ int touch(const Common& common, const std::vector<double>& at, std::uint32_t pro
   return 0;
 }
 
+int set(const Common& common, const v1::SetBodyParameters& parameters) {
+  Client client;
+  connect(client, common);
+  client.set_body_parameters(parameters);
+  std::printf("body %u updated\n", parameters.body_id());
+  return 0;
+}
+
+int pin(const Common& common, std::uint32_t body, const std::vector<std::uint32_t>& pins,
+        const std::vector<std::uint32_t>& unpins) {
+  Client client;
+  connect(client, common);
+  client.pin_particles(body, pins, unpins);
+  std::printf("body %u: %zu pinned, %zu freed\n", body, pins.size(), unpins.size());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -128,10 +145,43 @@ int main(int argc, char** argv) {
   touch_cmd->add_option("--proxy", proxy, "Proxy id")->capture_default_str();
   touch_cmd->add_option("--scene", common.scene, "Load this scene (by name) first");
 
+  v1::SetBodyParameters parameters;
+  std::uint32_t body = 0;
+  std::string integrator;
+  double drag = 0, structural = 0, shear = 0, bend = 0, max_strain = 0;
+  CLI::App* set_cmd = app.add_subcommand("set", "Change a body's integrator or parameters");
+  set_cmd->add_option("--body", body, "Body id")->capture_default_str();
+  auto* integrator_opt = set_cmd->add_option("--integrator", integrator, "Integrator name");
+  auto* drag_opt = set_cmd->add_option("--drag", drag, "Viscous drag, N s/m");
+  auto* structural_opt =
+      set_cmd->add_option("--structural", structural, "Structural stiffness, N/m");
+  auto* shear_opt = set_cmd->add_option("--shear", shear, "Shear stiffness, N/m");
+  auto* bend_opt = set_cmd->add_option("--bend", bend, "Bend stiffness, N/m");
+  auto* strain_opt =
+      set_cmd->add_option("--max-strain", max_strain, "Stretch limit (0 switches it off)");
+  set_cmd->add_option("--scene", common.scene, "Load this scene (by name) first");
+
+  std::vector<std::uint32_t> pins, unpins;
+  CLI::App* pin_cmd = app.add_subcommand("pin", "Pin particles where they are, or free them");
+  pin_cmd->add_option("--body", body, "Body id")->capture_default_str();
+  pin_cmd->add_option("--pin", pins, "Particles to pin, e.g. 0,19")->delimiter(',');
+  pin_cmd->add_option("--unpin", unpins, "Particles to free")->delimiter(',');
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (app.got_subcommand("hello")) return hello(common);
     if (watch_cmd->parsed()) return watch(common, frames, out_dir, rate, normals);
+    if (set_cmd->parsed()) {
+      parameters.set_body_id(body);
+      if (*integrator_opt) parameters.set_integrator(integrator);
+      if (*drag_opt) parameters.set_drag(drag);
+      if (*structural_opt) parameters.set_structural_stiffness(structural);
+      if (*shear_opt) parameters.set_shear_stiffness(shear);
+      if (*bend_opt) parameters.set_bend_stiffness(bend);
+      if (*strain_opt) parameters.set_max_strain(max_strain);
+      return set(common, parameters);
+    }
+    if (pin_cmd->parsed()) return pin(common, body, pins, unpins);
     return touch(common, at, proxy);
   } catch (const felt::client::ClientError& e) {
     std::cerr << "felt: " << e.what() << "\n";

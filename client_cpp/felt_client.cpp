@@ -187,3 +187,23 @@ v1::ForceUpdate Client::proxy_update(std::uint32_t proxy_id, const Point& positi
 }
 
 }  // namespace felt::client
+
+namespace felt::client {
+
+v1::BodyUpdated Client::set_body_parameters(const v1::SetBodyParameters& parameters) {
+  v1::ClientMessage message;
+  *message.mutable_set_body_parameters() = parameters;
+  return request(message).body_updated();
+}
+
+v1::BodyUpdated Client::pin_particles(std::uint32_t body_id, const std::vector<std::uint32_t>& pin,
+                                      const std::vector<std::uint32_t>& unpin) {
+  v1::ClientMessage message;
+  v1::PinParticles* pins = message.mutable_pin_particles();
+  pins->set_body_id(body_id);
+  for (std::uint32_t p : pin) pins->add_pin(p);
+  for (std::uint32_t p : unpin) pins->add_unpin(p);
+  return request(message).body_updated();
+}
+
+}  // namespace felt::client

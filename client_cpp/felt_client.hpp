@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <boost/asio.hpp>
 
@@ -46,6 +47,9 @@ class Client {
   felt::v1::Subscribed subscribe_frames(double max_rate_hz = 0, bool normals = false);
   felt::v1::ForceUpdate proxy_update(std::uint32_t proxy_id, const Point& position,
                                      std::uint32_t buttons = 0);
+  felt::v1::BodyUpdated set_body_parameters(const felt::v1::SetBodyParameters& parameters);
+  felt::v1::BodyUpdated pin_particles(std::uint32_t body_id, const std::vector<std::uint32_t>& pin,
+                                      const std::vector<std::uint32_t>& unpin);
 
   /// The next frame, or nothing if none came within `timeout`.
   std::optional<felt::v1::Frame> next_frame(std::chrono::milliseconds timeout);

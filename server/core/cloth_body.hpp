@@ -48,6 +48,7 @@ class ClothBody final : public DynamicSystem {
   const ClothModel& model() const { return *model_; }
   const std::shared_ptr<const ClothModel>& shared_model() const { return model_; }
   const ClothParams& params() const { return params_; }
+  void set_params(const ClothParams& params) { params_ = params; }
   const ParticleState& state() const { return state_; }
   ParticleState& state() { return state_; }
   Integrator& integrator() { return *integrator_; }

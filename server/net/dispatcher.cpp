@@ -53,7 +53,8 @@ void handle_hello(Session& session, std::uint64_t request_id, const v1::Hello& h
   v1::Welcome* welcome = reply.mutable_welcome();
   welcome->set_protocol_version(kProtocolVersion);
   welcome->set_server_version(context.server_version);
-  for (const char* capability : {"scenes.load", "frames.float32", "haptics.proxy"}) {
+  for (const char* capability :
+       {"scenes.load", "frames.float32", "haptics.proxy", "bodies.set", "bodies.pin"}) {
     welcome->add_capabilities(capability);
   }
   welcome->set_scene_id(session.scene_id());
@@ -176,6 +177,85 @@ void handle_proxy_update(Session& session, std::uint64_t request_id,
   session.send(reply);
 }
 
+void reply_body_updated(Session& session, std::uint64_t request_id, std::uint32_t body_id) {
+  ServerMessage reply;
+  reply.set_request_id(request_id);
+  reply.mutable_body_updated()->set_body_id(body_id);
+  session.send(reply);
+}
+
+bool known_body(Session& session, std::uint64_t request_id, std::uint32_t body_id) {
+  if (body_id < session.scene()->bodies().size()) return true;
+  session.send_error(request_id, v1::ERROR_CODE_UNKNOWN_ID,
+                     "no body " + std::to_string(body_id) + " in this scene");
+  return false;
+}
+
+void handle_set_body_parameters(Session& session, std::uint64_t request_id,
+                                const v1::SetBodyParameters& set) {
+  if (!known_body(session, request_id, set.body_id())) return;
+  // everything is checked here, so the command applied by the physics thread cannot fail
+  const auto bad = [&](const std::string& what) {
+    session.send_error(request_id, v1::ERROR_CODE_BAD_REQUEST, what);
+  };
+  if (set.has_integrator() && !make_integrator(set.integrator())) {
+    return bad("unknown integrator \"" + set.integrator() + "\"");
+  }
+  if (set.has_drag() && !(set.drag() >= 0 && std::isfinite(set.drag()))) {
+    return bad("drag must be a finite number >= 0");
+  }
+  const std::pair<bool, double> stiffnesses[] = {
+      {set.has_structural_stiffness(), set.structural_stiffness()},
+      {set.has_shear_stiffness(), set.shear_stiffness()},
+      {set.has_bend_stiffness(), set.bend_stiffness()}};
+  for (const auto& [given, k] : stiffnesses) {
+    if (given && !(k > 0 && std::isfinite(k))) return bad("stiffness must be a finite number > 0");
+  }
+  if (set.has_max_strain() && !(set.max_strain() >= 0 && std::isfinite(set.max_strain()))) {
+    return bad("max_strain must be a finite number >= 0");
+  }
+  session.scene()->post([set](Scene& scene) {
+    ClothBody& body = scene.world.bodies()[set.body_id()];
+    ClothParams params = body.params();
+    if (set.has_drag()) params.drag = set.drag();
+    if (set.has_structural_stiffness()) {
+      params.spring(SpringKind::kStructural).stiffness = set.structural_stiffness();
+    }
+    if (set.has_shear_stiffness())
+      params.spring(SpringKind::kShear).stiffness = set.shear_stiffness();
+    if (set.has_bend_stiffness()) params.spring(SpringKind::kBend).stiffness = set.bend_stiffness();
+    if (set.has_max_strain()) {
+      params.stretch.enabled = set.max_strain() > 0;
+      if (params.stretch.enabled) params.stretch.max_strain = set.max_strain();
+    }
+    body.set_params(params);
+    if (set.has_integrator()) body.set_integrator(make_integrator(set.integrator()));
+  });
+  reply_body_updated(session, request_id, set.body_id());
+}
+
+void handle_pin_particles(Session& session, std::uint64_t request_id,
+                          const v1::PinParticles& pins) {
+  if (!known_body(session, request_id, pins.body_id())) return;
+  const std::uint32_t particles = session.scene()->bodies()[pins.body_id()].particles;
+  for (const auto* list : {&pins.pin(), &pins.unpin()}) {
+    for (std::uint32_t p : *list) {
+      if (p >= particles) {
+        session.send_error(request_id, v1::ERROR_CODE_BAD_REQUEST,
+                           "particle " + std::to_string(p) + " out of range (the body has " +
+                               std::to_string(particles) + ")");
+        return;
+      }
+    }
+  }
+  session.scene()->post([pins](Scene& scene) {
+    ClothBody& body = scene.world.bodies()[pins.body_id()];
+    for (std::uint32_t p : pins.unpin()) body.unpin(p);
+    for (std::uint32_t p : pins.pin()) body.pin(p);
+  });
+  reply_body_updated(session, request_id, pins.body_id());
+}
+
 }  // namespace
 
 void dispatch(Session& session, const ClientMessage& message) {
@@ -199,6 +279,14 @@ void dispatch(Session& session, const ClientMessage& message) {
     case ClientMessage::kProxyUpdate:
       if (!session.scene()) break;
       handle_proxy_update(session, request_id, message.proxy_update());
+      return;
+    case ClientMessage::kSetBodyParameters:
+      if (!session.scene()) break;
+      handle_set_body_parameters(session, request_id, message.set_body_parameters());
+      return;
+    case ClientMessage::kPinParticles:
+      if (!session.scene()) break;
+      handle_pin_particles(session, request_id, message.pin_particles());
       return;
     default:
       session.send_error(request_id, v1::ERROR_CODE_UNKNOWN_MESSAGE,

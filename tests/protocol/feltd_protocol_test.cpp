@@ -188,6 +188,48 @@ TEST_F(FeltdTest, GarbageClosesOnlyThatConnection) {
   EXPECT_TRUE(server_->running());
 }
 
+TEST_F(FeltdTest, BodiesChangeIntegratorAndPinsAtRunTime) {
+  Client client;
+  connect(client);
+  client.hello("test");
+  client.load_scene_by_name("default");
+  v1::SetBodyParameters set;
+  set.set_body_id(0);
+  set.set_integrator("implicit_euler");
+  set.set_max_strain(0.1);
+  EXPECT_EQ(client.set_body_parameters(set).body_id(), 0u);
+
+  // pin the free bottom corner where it is: it stops moving
+  client.pin_particles(0, {399}, {});
+  client.subscribe_frames(60);
+  std::optional<v1::Frame> first;
+  for (int i = 0; i < 3; ++i) first = client.next_frame(5s);  // past the pin's step
+  ASSERT_TRUE(first);
+  std::optional<v1::Frame> later;
+  for (int i = 0; i < 10; ++i) later = client.next_frame(5s);
+  ASSERT_TRUE(later);
+  EXPECT_GT(later->step(), first->step());
+  EXPECT_EQ(vertex(later->bodies(0), 399), vertex(first->bodies(0), 399));
+  EXPECT_NE(vertex(later->bodies(0), 210), vertex(first->bodies(0), 210));  // the rest moves
+
+  const auto expect_error = [&](auto call, v1::ErrorCode code) {
+    try {
+      call();
+      ADD_FAILURE() << "no error (expected code " << code << ")";
+    } catch (const ClientError& e) {
+      EXPECT_EQ(e.code(), code) << e.what();
+    }
+  };
+  set.set_integrator("warp_drive");
+  expect_error([&] { client.set_body_parameters(set); }, v1::ERROR_CODE_BAD_REQUEST);
+  set.clear_integrator();
+  set.set_structural_stiffness(-5);
+  expect_error([&] { client.set_body_parameters(set); }, v1::ERROR_CODE_BAD_REQUEST);
+  set.set_body_id(7);
+  expect_error([&] { client.set_body_parameters(set); }, v1::ERROR_CODE_UNKNOWN_ID);
+  expect_error([&] { client.pin_particles(0, {400}, {}); }, v1::ERROR_CODE_BAD_REQUEST);
+}
+
 TEST_F(FeltdTest, ExitsCleanlyOnSigterm) {
   Client client;
   connect(client);
