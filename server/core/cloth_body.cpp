@@ -44,6 +44,22 @@ void ClothBody::constrain(ParticleConstraint::Kind kind, std::uint32_t p, const 
   apply_constraints(std::span(constraints_).last(1), state_);
 }
 
+void ClothBody::set_anchor(const Anchor& anchor) {
+  FELT_CHECK(anchor.particle < inv_mass_.size() && anchor.stiffness >= 0 && anchor.damping >= 0);
+  remove_anchor(anchor.particle);
+  anchors_.push_back(anchor);
+}
+
+void ClothBody::remove_anchor(std::uint32_t p) {
+  std::erase_if(anchors_, [p](const Anchor& a) { return a.particle == p; });
+}
+
+void ClothBody::move_particle(std::uint32_t p, const Vec3& target) {
+  FELT_CHECK(p < inv_mass_.size() && target.allFinite());
+  state_.x[p] = target;
+  state_.v[p].setZero();
+}
+
 void ClothBody::clear_external_forces() {
   std::fill(external_force_.begin(), external_force_.end(), Vec3::Zero());
 }
@@ -68,6 +84,9 @@ void ClothBody::compute_forces(std::span<const Vec3> x, std::span<const Vec3> v,
     f[s.j] -= fs;
   }
   if (params_.wind.enabled) add_wind_forces(x, v, t, f);
+  for (const Anchor& a : anchors_) {
+    f[a.particle] += a.stiffness * (a.target - x[a.particle]) - a.damping * v[a.particle];
+  }
 }
 
 void ClothBody::add_wind_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real t,
@@ -92,6 +111,10 @@ bool ClothBody::compute_jacobian(std::span<const Vec3> x, std::span<const Vec3> 
   const ClothModel& model = *model_;
   jacobian.reset(x.size());
   for (std::uint32_t p = 0; p < x.size(); ++p) jacobian.add_velocity_diagonal(p, params_.drag);
+  for (const Anchor& a : anchors_) {
+    jacobian.add_position_diagonal(a.particle, a.stiffness);
+    jacobian.add_velocity_diagonal(a.particle, a.damping);
+  }
   for (const Spring& s : model.springs) {
     const SpringParams& sp = params_.spring(s.kind);
     if (!sp.enabled) continue;
@@ -136,6 +159,9 @@ Real ClothBody::elastic_energy() const {
     if (!sp.enabled) continue;
     const Real stretch = (state_.x[s.i] - state_.x[s.j]).norm() - s.rest_length;
     energy += 0.5 * sp.stiffness * stretch * stretch;
+  }
+  for (const Anchor& a : anchors_) {
+    energy += 0.5 * a.stiffness * (a.target - state_.x[a.particle]).squaredNorm();
   }
   return energy;
 }

@@ -27,6 +27,15 @@ struct Wind {
   Real gust_period = 2;          ///< T, s
 };
 
+/// A particle tied by a damped zero-length spring to a target it follows (thesis 1 §5, the
+/// soft "follow a point" variant): f = k (target − x) − c v.
+struct Anchor {
+  std::uint32_t particle = 0;
+  Vec3 target = Vec3::Zero();
+  Real stiffness = 0;  ///< N/m
+  Real damping = 0;    ///< N·s/m
+};
+
 /// Force parameters of a cloth (thesis 1 §2).
 struct ClothParams {
   std::array<SpringParams, kSpringKindCount> springs;  ///< indexed by SpringKind
@@ -62,6 +71,14 @@ class ClothBody final : public DynamicSystem {
   /// Holds a particle in a plane or on a line through where it is now.
   void constrain(ParticleConstraint::Kind kind, std::uint32_t p, const Vec3& direction);
   const std::vector<ParticleConstraint>& constraints() const { return constraints_; }
+
+  /// Ties a particle to a target by a soft spring, replacing any anchor it had.
+  void set_anchor(const Anchor& anchor);
+  void remove_anchor(std::uint32_t p);
+  const std::vector<Anchor>& anchors() const { return anchors_; }
+  /// Moves a particle to `target` outright (the kinematic "follow a point" of thesis 1 §5); for
+  /// pinned particles, whose position nothing else changes. Its velocity becomes 0.
+  void move_particle(std::uint32_t p, const Vec3& target);
   bool is_pinned(std::uint32_t p) const { return inv_mass_[p] == 0; }
 
   void set_gravity(const Vec3& gravity) { gravity_ = gravity; }
@@ -72,7 +89,7 @@ class ClothBody final : public DynamicSystem {
 
   /// Σ ½ m v² over all particles, J.
   Real kinetic_energy() const;
-  /// Σ ½ k (|l| − r)² over the enabled springs, J.
+  /// Σ ½ k (|l| − r)² over the enabled springs and ½ k |target − x|² over the anchors, J.
   Real elastic_energy() const;
   const std::vector<Vec3>& external_forces() const { return external_force_; }
   const Vec3& gravity() const { return gravity_; }
@@ -100,6 +117,7 @@ class ClothBody final : public DynamicSystem {
   ParticleState state_;
   std::vector<Real> inv_mass_;
   std::vector<ParticleConstraint> constraints_;
+  std::vector<Anchor> anchors_;
   Vec3 gravity_ = Vec3::Zero();
   std::vector<Vec3> external_force_;
 };

@@ -16,12 +16,13 @@ Mat3 ForceJacobian::Pair::dv() const {
 void ForceJacobian::reset(std::size_t particles) {
   pairs_.clear();
   velocity_diagonal_.assign(particles, 0);
+  position_diagonal_.assign(particles, 0);
 }
 
 void ForceJacobian::multiply(std::span<const Vec3> y, std::span<Vec3> dfdx_y,
                              std::span<Vec3> dfdv_y) const {
   for (std::size_t p = 0; p < y.size(); ++p) {
-    dfdx_y[p].setZero();
+    dfdx_y[p] = -position_diagonal_[p] * y[p];
     dfdv_y[p] = -velocity_diagonal_[p] * y[p];
   }
   for (const Pair& pair : pairs_) {
@@ -39,7 +40,7 @@ void ForceJacobian::multiply(std::span<const Vec3> y, std::span<Vec3> dfdx_y,
 
 void ForceJacobian::diagonal_blocks(std::span<Mat3> dx, std::span<Mat3> dv) const {
   for (std::size_t p = 0; p < velocity_diagonal_.size(); ++p) {
-    dx[p].setZero();
+    dx[p] = -position_diagonal_[p] * Mat3::Identity();
     dv[p] = -velocity_diagonal_[p] * Mat3::Identity();
   }
   for (const Pair& pair : pairs_) {

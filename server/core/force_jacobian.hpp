@@ -36,6 +36,8 @@ class ForceJacobian {
   void add_pair(const Pair& pair) { pairs_.push_back(pair); }
   /// Adds ∂f_p/∂v_p = −c I (viscous drag).
   void add_velocity_diagonal(std::uint32_t p, Real c) { velocity_diagonal_[p] += c; }
+  /// Adds ∂f_p/∂x_p = −k I (a spring to a fixed point).
+  void add_position_diagonal(std::uint32_t p, Real k) { position_diagonal_[p] += k; }
 
   /// dfdx_y = (∂f/∂x) y and dfdv_y = (∂f/∂v) y.
   void multiply(std::span<const Vec3> y, std::span<Vec3> dfdx_y, std::span<Vec3> dfdv_y) const;
@@ -49,6 +51,7 @@ class ForceJacobian {
  private:
   std::vector<Pair> pairs_;
   std::vector<Real> velocity_diagonal_;  ///< holds −∂f_p/∂v_p as a scalar
+  std::vector<Real> position_diagonal_;  ///< holds −∂f_p/∂x_p as a scalar
 };
 
 }  // namespace felt

@@ -278,6 +278,25 @@ void read_constraints(const ObjectReader& body, ClothBody& cloth) {
   }
 }
 
+/// "anchors": [{"particle": 5, "target": [x, y, z], "stiffness": 50, "damping": 0.5}]
+void read_anchors(const ObjectReader& body, ClothBody& cloth) {
+  if (!body.has("anchors")) return;
+  const json& list = body.at("anchors");
+  if (!list.is_array()) fail(body.path_of("anchors"), "must be an array");
+  const std::uint32_t n = static_cast<std::uint32_t>(cloth.model().particle_count());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const ObjectReader a(list[i], element(body.path_of("anchors"), i),
+                         {"particle", "target", "stiffness", "damping"});
+    Anchor anchor;
+    if (!a.has("particle")) fail(a.path_of("particle"), "is required");
+    anchor.particle = a.count("particle", 0, 0, n - 1);
+    anchor.target = a.vec3("target", cloth.state().x[anchor.particle]);
+    anchor.stiffness = a.positive("stiffness", 100);
+    anchor.damping = a.non_negative("damping", 0);
+    cloth.set_anchor(anchor);
+  }
+}
+
 /// Counts `particles` against what the scene's limit has left.
 void take_particles(const std::string& path, std::size_t particles, std::size_t& particles_left) {
   if (particles > particles_left) {
@@ -340,6 +359,7 @@ ClothBody read_cloth(const ObjectReader& body, std::size_t index, const SceneLoa
     cloth.pin(p);
   }
   read_constraints(body, cloth);
+  read_anchors(body, cloth);
   return cloth;
 }
 

@@ -40,6 +40,7 @@ TEST(ClothJacobian, MatchesFiniteDifferencesOfTheForces) {
     v[p] = Vec3(noise(rng), noise(rng), noise(rng)) * 100;
     y[p] = Vec3(noise(rng), noise(rng), noise(rng)) * 100;
   }
+  body.set_anchor({7, Vec3(0.3, -0.2, 0.1), 40, 0.3});  // the anchor's blocks are checked too
   ForceJacobian jacobian;
   ASSERT_TRUE(body.compute_jacobian(x, v, jacobian));
   std::vector<Vec3> dfdx(x.size()), dfdv(x.size());
