@@ -178,9 +178,13 @@ int run(const RunOptions& options) {
   }
   const felt::BatchRunStats stats = felt::run_batch(*scene, options.steps);
   const nlohmann::json json = stats_to_json(stats);
-  std::printf("%llu steps, sim %.4f s, wall %.3f s, %.4f ms/step%s\n",
+  std::printf("%llu steps, sim %.4f s, wall %.3f s, %.4f ms/step\n",
               static_cast<unsigned long long>(stats.steps), stats.sim_time, stats.wall_seconds,
-              stats.ms_per_step, stats.nonfinite ? ", NON-FINITE STATE" : "");
+              stats.ms_per_step);
+  if (stats.nonfinite) {
+    std::printf("UNSTABLE: %llu steps could not be rescued (rolled back, body stopped)\n",
+                static_cast<unsigned long long>(stats.unrecoverable_steps));
+  }
   if (!options.stats_json.empty()) {
     std::ofstream out(options.stats_json);
     out << json.dump(2) << "\n";
