@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "core/cloth_body.hpp"
+#include "core/cloth_grid.hpp"
 
 namespace felt::test {
 
@@ -25,6 +26,23 @@ inline ClothBody spring_pair(Real mass, Real stiffness, Real rest, Real damping,
   ClothBody body("pair", model, params, make_integrator(integrator));
   body.pin(0);
   return body;
+}
+
+/// A small nx × ny grid cloth with structural springs (k, c) and fixed, softer shear (70, 0.1)
+/// and bend (9, 0.02) springs and drag 0.05: a body with every kind of force term, for checks
+/// of forces, Jacobians and single steps.
+inline ClothBody small_grid_body(std::uint32_t nx, std::uint32_t ny, Real structural_stiffness,
+                                 Real structural_damping, std::string_view integrator) {
+  GridClothSpec spec;
+  spec.nx = nx;
+  spec.ny = ny;
+  ClothParams params;
+  params.spring(SpringKind::kStructural) = {true, structural_stiffness, structural_damping};
+  params.spring(SpringKind::kShear) = {true, 70, 0.1};
+  params.spring(SpringKind::kBend) = {true, 9, 0.02};
+  params.drag = 0.05;
+  return ClothBody("c", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
+                   make_integrator(integrator));
 }
 
 inline void expect_vec_near(const Vec3& got, const Vec3& want, Real tolerance) {

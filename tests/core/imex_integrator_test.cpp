@@ -127,16 +127,7 @@ TEST(Imex, LinearSpringIsBackwardEulerAndStableAtAnyStep) {
 TEST(Imex, OneStepSolvesEquation425AsWritten) {
   // eq. 4.25 assembled densely from its definitions, f_a = f − H x − D v, with the pinned rows
   // replaced by v = 0; the integrator solves the Δv form instead
-  GridClothSpec spec;
-  spec.nx = 4;
-  spec.ny = 3;
-  ClothParams params;
-  params.spring(SpringKind::kStructural) = {true, 3e3, 0.7};
-  params.spring(SpringKind::kShear) = {true, 70, 0.1};
-  params.spring(SpringKind::kBend) = {true, 9, 0.02};
-  params.drag = 0.05;
-  ClothBody body("c", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
-                 make_integrator("imex"));
+  ClothBody body = test::small_grid_body(4, 3, 3e3, 0.7, "imex");
   body.set_gravity(Vec3(0, -9.81, 0));
   body.pin(0);
   body.pin(3);

@@ -21,16 +21,7 @@ ClothBody spring_pair(Real mass, Real stiffness, Real rest) {
 }
 
 TEST(ClothJacobian, MatchesFiniteDifferencesOfTheForces) {
-  GridClothSpec spec;
-  spec.nx = 5;
-  spec.ny = 4;
-  ClothParams params;
-  params.spring(SpringKind::kStructural) = {true, 300, 0.3};
-  params.spring(SpringKind::kShear) = {true, 70, 0.1};
-  params.spring(SpringKind::kBend) = {true, 9, 0.02};
-  params.drag = 0.05;
-  ClothBody body("c", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
-                 make_integrator("implicit_euler"));
+  ClothBody body = test::small_grid_body(5, 4, 300, 0.3, "implicit_euler");
   // stretch every spring (scale up) and shake: the compressed-spring clamp stays inactive
   std::mt19937 rng(7);
   std::uniform_real_distribution<Real> noise(-0.01, 0.01);

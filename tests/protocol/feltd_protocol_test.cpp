@@ -36,6 +36,17 @@ class FeltdTest : public ::testing::Test {
   std::unique_ptr<FeltdProcess> server_;
 };
 
+/// Runs `call` and expects it to throw the server's error `code`.
+template <typename Call>
+void expect_error(Call call, v1::ErrorCode code) {
+  try {
+    call();
+    ADD_FAILURE() << "no error (expected code " << code << ")";
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), code) << e.what();
+  }
+}
+
 std::array<double, 3> vertex(const v1::BodyFrame& body, int v) {
   return {body.positions(3 * v), body.positions(3 * v + 1), body.positions(3 * v + 2)};
 }
@@ -136,14 +147,6 @@ TEST_F(FeltdTest, BadRequestsGetErrorsAndTheConnectionStaysUsable) {
   Client client;
   connect(client);
   client.hello("test");
-  const auto expect_error = [&](auto call, v1::ErrorCode code) {
-    try {
-      call();
-      ADD_FAILURE() << "no error (expected code " << code << ")";
-    } catch (const ClientError& e) {
-      EXPECT_EQ(e.code(), code) << e.what();
-    }
-  };
   expect_error([&] { client.proxy_update(0, {NAN, 0, 0}); }, v1::ERROR_CODE_BAD_REQUEST);
   expect_error([&] { client.proxy_update(0, {INFINITY, 0, 0}); }, v1::ERROR_CODE_BAD_REQUEST);
   expect_error([&] { client.load_scene_by_name("../../etc/passwd"); }, v1::ERROR_CODE_NOT_FOUND);
@@ -212,14 +215,6 @@ TEST_F(FeltdTest, BodiesChangeIntegratorAndPinsAtRunTime) {
   EXPECT_EQ(vertex(later->bodies(0), 399), vertex(first->bodies(0), 399));
   EXPECT_NE(vertex(later->bodies(0), 210), vertex(first->bodies(0), 210));  // the rest moves
 
-  const auto expect_error = [&](auto call, v1::ErrorCode code) {
-    try {
-      call();
-      ADD_FAILURE() << "no error (expected code " << code << ")";
-    } catch (const ClientError& e) {
-      EXPECT_EQ(e.code(), code) << e.what();
-    }
-  };
   set.set_integrator("warp_drive");
   expect_error([&] { client.set_body_parameters(set); }, v1::ERROR_CODE_BAD_REQUEST);
   set.clear_integrator();
