@@ -8,6 +8,7 @@
 
 #include "core/cloth_body.hpp"
 #include "core/cloth_grid.hpp"
+#include "core/world.hpp"
 
 namespace felt::test {
 
@@ -43,6 +44,31 @@ inline ClothBody small_grid_body(std::uint32_t nx, std::uint32_t ny, Real struct
   params.drag = 0.05;
   return ClothBody("c", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
                    make_integrator(integrator));
+}
+
+/// A 6 × 6 cloth (structural 500 N/m, shear 100 N/m) hanging from its pinned top row, stepped
+/// 400 times at 5 ms: the pins must stay exactly put while the rest sags. `every_step_ok`
+/// also requires that no step needed a rescue. Returns the world for further checks.
+inline World expect_top_row_pins_hold(std::string_view integrator, bool every_step_ok) {
+  GridClothSpec spec;
+  spec.nx = spec.ny = 6;
+  ClothParams params;
+  params.spring(SpringKind::kStructural) = {true, 500, 0.1};
+  params.spring(SpringKind::kShear) = {true, 100, 0.05};
+  World world(WorldSettings{Vec3(0, -9.81, 0), 5e-3, 100, 6});
+  world.add_body(ClothBody("c", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
+                           make_integrator(integrator)));
+  const auto pins = grid_pin_indices(spec, GridPinPreset::kTopRow);
+  for (std::uint32_t p : pins) world.bodies()[0].pin(p);
+  const std::vector<Vec3> start = world.bodies()[0].state().x;
+  for (int n = 0; n < 400; ++n) {
+    const StepReport report = world.step();
+    if (every_step_ok) EXPECT_EQ(report.flags, kStepOk) << "step " << n;
+  }
+  const ClothBody& body = world.bodies()[0];
+  for (std::uint32_t p : pins) EXPECT_EQ(body.state().x[p], start[p]);
+  EXPECT_LT(body.state().x[30].y(), start[30].y() - 0.002);  // the rest sags
+  return world;
 }
 
 inline void expect_vec_near(const Vec3& got, const Vec3& want, Real tolerance) {
