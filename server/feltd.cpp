@@ -133,17 +133,46 @@ int serve(const ServeOptions& options) {
   return 0;
 }
 
+nlohmann::json stage_times_to_json(const felt::SolidStageTimes& times) {
+  return {{"integration", times.integration},
+          {"detection", times.detection},
+          {"triangles", times.triangles},
+          {"penetration", times.penetration},
+          {"resolution", times.resolution},
+          {"colliders", times.colliders},
+          {"finish", times.finish}};
+}
+
 nlohmann::json stats_to_json(const felt::BatchRunStats& stats) {
   nlohmann::json bodies = nlohmann::json::array();
+  // the scene's size the way the second thesis's Table 7.2 counts it: all solids together
+  nlohmann::json solid_totals = {{"nodes", 0}, {"edges", 0},         {"triangles", 0},
+                                 {"tets", 0},  {"fine_vertices", 0}, {"fine_triangles", 0}};
   for (const felt::BodyRunStats& body : stats.bodies) {
-    bodies.push_back({{"name", body.name},
-                      {"particles", body.particles},
-                      {"edges", body.edges},
-                      {"triangles", body.triangles},
-                      {"tets", body.tets},
-                      {"kinetic_energy", body.kinetic_energy},
-                      {"max_strain", body.max_strain}});
+    nlohmann::json entry = {{"name", body.name},
+                            {"kind", body.kind},
+                            {"particles", body.particles},
+                            {"edges", body.edges},
+                            {"triangles", body.triangles},
+                            {"tets", body.tets},
+                            {"kinetic_energy", body.kinetic_energy}};
+    if (body.kind == "cloth") {
+      entry["max_strain"] = body.max_strain;
+    } else {
+      entry["fine_vertices"] = body.fine_vertices;
+      entry["fine_triangles"] = body.fine_triangles;
+      entry["volume_ratio"] = body.volume_ratio;
+      for (const auto& [key, count] :
+           {std::pair{"nodes", body.particles}, std::pair{"edges", body.edges},
+            std::pair{"triangles", body.triangles}, std::pair{"tets", body.tets},
+            std::pair{"fine_vertices", body.fine_vertices},
+            std::pair{"fine_triangles", body.fine_triangles}}) {
+        solid_totals[key] = solid_totals[key].get<std::size_t>() + count;
+      }
+    }
+    bodies.push_back(std::move(entry));
   }
+  const felt::SolidRunStats& solids = stats.solids;
   return {{"steps", stats.steps},
           {"sim_time", stats.sim_time},
           {"wall_seconds", stats.wall_seconds},
@@ -151,7 +180,16 @@ nlohmann::json stats_to_json(const felt::BatchRunStats& stats) {
           {"nonfinite", stats.nonfinite},
           {"rescued_steps", stats.rescued_steps},
           {"unrecoverable_steps", stats.unrecoverable_steps},
-          {"bodies", bodies}};
+          {"bodies", bodies},
+          {"solids",
+           {{"totals", solid_totals},
+            {"mean_colliding_nodes", solids.mean_colliding_nodes},
+            {"max_colliding_nodes", solids.max_colliding_nodes},
+            {"mean_colliding_triangles", solids.mean_colliding_triangles},
+            {"max_colliding_triangles", solids.max_colliding_triangles},
+            {"max_substeps", solids.max_substeps},
+            {"mean_stage_ms", stage_times_to_json(solids.mean_ms)},
+            {"max_stage_ms", stage_times_to_json(solids.max_ms)}}}};
 }
 
 int run(const RunOptions& options) {
@@ -181,6 +219,11 @@ int run(const RunOptions& options) {
   std::printf("%llu steps, sim %.4f s, wall %.3f s, %.4f ms/step\n",
               static_cast<unsigned long long>(stats.steps), stats.sim_time, stats.wall_seconds,
               stats.ms_per_step);
+  if (const auto& totals = json["solids"]["totals"]; totals["nodes"].get<std::size_t>() > 0) {
+    std::printf("solids: %zu nodes, %zu edges, %zu triangles, %zu tetrahedra\n",
+                totals["nodes"].get<std::size_t>(), totals["edges"].get<std::size_t>(),
+                totals["triangles"].get<std::size_t>(), totals["tets"].get<std::size_t>());
+  }
   if (stats.nonfinite) {
     std::printf("UNSTABLE: %llu steps could not be rescued (rolled back, body stopped)\n",
                 static_cast<unsigned long long>(stats.unrecoverable_steps));

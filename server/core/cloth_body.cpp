@@ -54,6 +54,26 @@ void ClothBody::remove_anchor(std::uint32_t p) {
   std::erase_if(anchors_, [p](const Anchor& a) { return a.particle == p; });
 }
 
+void ClothBody::add_constraint_force(const ConstraintForce& constraint) {
+  FELT_CHECK(constraint.particle < inv_mass_.size() && constraint.point.allFinite());
+  FELT_CHECK(constraint.stiffness >= 0 && constraint.damping >= 0);
+  ConstraintForce added = constraint;
+  switch (constraint.kind) {
+    case ConstraintForce::Kind::kSphere:
+      FELT_CHECK(constraint.radius > 0 && std::isfinite(constraint.radius));
+      break;
+    case ConstraintForce::Kind::kPlane:
+      FELT_CHECK(constraint.normal.allFinite() && constraint.normal.norm() > 0);
+      added.normal.normalize();
+      break;
+  }
+  constraint_forces_.push_back(added);
+}
+
+void ClothBody::remove_constraint_forces(std::uint32_t p) {
+  std::erase_if(constraint_forces_, [p](const ConstraintForce& c) { return c.particle == p; });
+}
+
 void ClothBody::move_particle(std::uint32_t p, const Vec3& target) {
   FELT_CHECK(p < inv_mass_.size() && target.allFinite());
   state_.x[p] = target;
@@ -87,6 +107,7 @@ void ClothBody::compute_forces(std::span<const Vec3> x, std::span<const Vec3> v,
   for (const Anchor& a : anchors_) {
     f[a.particle] += a.stiffness * (a.target - x[a.particle]) - a.damping * v[a.particle];
   }
+  add_constraint_forces(constraint_forces_, inv_mass_, x, v, f);  // needs all the other forces
 }
 
 void ClothBody::add_wind_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real t,

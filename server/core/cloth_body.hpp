@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/cloth_model.hpp"
+#include "core/constraint_force.hpp"
 #include "core/dynamic_system.hpp"
 #include "core/integrator.hpp"
 #include "core/particle_constraint.hpp"
@@ -41,7 +42,9 @@ struct ClothParams {
   std::array<SpringParams, kSpringKindCount> springs;  ///< indexed by SpringKind
   Real drag = 0;                                       ///< viscous drag k_d: f = −k_d v, N·s/m
   StretchLimit stretch;                                ///< inverse dynamics after each step
-  Real thickness = 0.005;  ///< m; how close particles may come to a collider
+  Real thickness = 0.005;  ///< m; how close particles may come to a collider or each other
+  /// Particles pushed away from the cloth's own triangles (ClothSelfCollision), opt-in.
+  bool self_collision = false;
   Wind wind;
 
   SpringParams& spring(SpringKind kind) { return springs[static_cast<int>(kind)]; }
@@ -76,6 +79,15 @@ class ClothBody final : public DynamicSystem {
   void set_anchor(const Anchor& anchor);
   void remove_anchor(std::uint32_t p);
   const std::vector<Anchor>& anchors() const { return anchors_; }
+
+  /// Keeps a particle on a sphere or plane by a Witkin constraint force, added last in
+  /// compute_forces so every integrator sees it (implicit ones explicitly: it has no Jacobian
+  /// term). A particle may have several; a plane's normal is normalized here.
+  void add_constraint_force(const ConstraintForce& constraint);
+  /// Removes every constraint force on particle p.
+  void remove_constraint_forces(std::uint32_t p);
+  const std::vector<ConstraintForce>& constraint_forces() const { return constraint_forces_; }
+
   /// Moves a particle to `target` outright (the kinematic "follow a point" of thesis 1 §5); for
   /// pinned particles, whose position nothing else changes. Its velocity becomes 0.
   void move_particle(std::uint32_t p, const Vec3& target);
@@ -118,6 +130,7 @@ class ClothBody final : public DynamicSystem {
   std::vector<Real> inv_mass_;
   std::vector<ParticleConstraint> constraints_;
   std::vector<Anchor> anchors_;
+  std::vector<ConstraintForce> constraint_forces_;
   Vec3 gravity_ = Vec3::Zero();
   std::vector<Vec3> external_force_;
 };

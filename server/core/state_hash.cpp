@@ -23,9 +23,14 @@ std::uint64_t state_hash(const World& world) {
   std::uint64_t hash = kFnvOffset;
   const std::uint64_t steps = world.step_count();
   mix(hash, &steps, sizeof steps);
-  for (const ClothBody& body : world.bodies()) {
+  for (const ClothBody& body : world.cloths()) {
     mix(hash, body.state().x);
     mix(hash, body.state().v);
+  }
+  for (const SolidBody& body : world.solids().bodies()) {
+    mix(hash, body.positions());
+    mix(hash, body.previous_positions());
+    mix(hash, body.velocities());
   }
   return hash;
 }

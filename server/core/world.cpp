@@ -5,36 +5,78 @@
 
 namespace felt {
 
-World::World(WorldSettings settings) : settings_(settings) {}
+World::World(WorldSettings settings, SolidStepSettings solid_settings)
+    : settings_(settings), solids_(solid_settings) {}
 
 std::uint32_t World::add_body(ClothBody body) {
   body.set_gravity(settings_.gravity);
-  bodies_.push_back(std::move(body));
+  cloths_.push_back(std::move(body));
+  self_collision_.emplace_back();
   energy_valid_ = false;
-  return static_cast<std::uint32_t>(bodies_.size() - 1);
+  refs_.push_back({BodyRef::Kind::kCloth, static_cast<std::uint32_t>(cloths_.size() - 1)});
+  return static_cast<std::uint32_t>(refs_.size() - 1);
+}
+
+std::uint32_t World::add_body(SolidBody body) {
+  refs_.push_back({BodyRef::Kind::kSolid, solids_.add_body(std::move(body))});
+  return static_cast<std::uint32_t>(refs_.size() - 1);
+}
+
+ClothBody* World::cloth(std::uint32_t id) {
+  const BodyRef& ref = body_ref(id);
+  return ref.kind == BodyRef::Kind::kCloth ? &cloths()[ref.index] : nullptr;
+}
+
+const ClothBody* World::cloth(std::uint32_t id) const {
+  const BodyRef& ref = body_ref(id);
+  return ref.kind == BodyRef::Kind::kCloth ? &cloths_[ref.index] : nullptr;
+}
+
+std::size_t World::surface_vertex_count(std::uint32_t id) const {
+  const BodyRef& ref = body_ref(id);
+  if (ref.kind == BodyRef::Kind::kCloth) return cloths_[ref.index].model().particle_count();
+  const SolidBody& solid = solids_.bodies()[ref.index];
+  const EmbeddedSurface* surface = solid.embedded_surface();
+  return surface ? surface->vertex_count() : solid.node_count();
+}
+
+void World::add_surface_force(std::uint32_t id, std::uint32_t vertex, const Vec3& force) {
+  const BodyRef& ref = body_ref(id);
+  if (ref.kind == BodyRef::Kind::kCloth) {
+    cloths_[ref.index].add_external_force(vertex, force);
+    return;
+  }
+  SolidBody& solid = solids_.bodies()[ref.index];
+  const EmbeddedSurface* surface = solid.embedded_surface();
+  if (!surface) {
+    solid.add_external_force(vertex, force);
+    return;
+  }
+  const Tetrahedron& tet = solid.rest().tets[surface->tet[vertex]];
+  for (int c = 0; c < 4; ++c) solid.add_external_force(tet[c], surface->weights[vertex][c] * force);
 }
 
 StepReport World::step() {
   StepReport report;
   if (!energy_valid_) {
-    energy_.resize(bodies_.size());
-    for (std::size_t b = 0; b < bodies_.size(); ++b) {
-      energy_[b] = bodies_[b].kinetic_energy() + bodies_[b].elastic_energy();
+    energy_.resize(cloths_.size());
+    for (std::size_t b = 0; b < cloths_.size(); ++b) {
+      energy_[b] = cloths_[b].kinetic_energy() + cloths_[b].elastic_energy();
     }
   }
-  for (std::size_t b = 0; b < bodies_.size(); ++b) {
-    ClothBody& body = bodies_[b];
+  for (std::size_t b = 0; b < cloths_.size(); ++b) {
+    ClothBody& body = cloths_[b];
     // copy-assignment into equally sized vectors reuses their storage: no allocation
     backup_.x = body.state().x;
     backup_.v = body.state().v;
     int substeps = 1;
-    bool ok = try_step(body, substeps, energy_[b]);
+    bool ok = try_step(b, substeps, energy_[b]);
     for (int retry = 0; !ok && retry < settings_.max_substep_doublings; ++retry) {
       body.state().x = backup_.x;
       body.state().v = backup_.v;
       body.integrator().reset();
       substeps *= 2;
-      ok = try_step(body, substeps, energy_[b]);
+      ok = try_step(b, substeps, energy_[b]);
     }
     if (ok && substeps > 1) report.flags |= kStepRescued;
     if (!ok) {
@@ -48,18 +90,29 @@ StepReport World::step() {
     body.clear_external_forces();
   }
   energy_valid_ = true;
+  if (!solids_.bodies().empty()) {
+    const SolidStepStats& solid = solids_.step(settings_.time_step, settings_.gravity, colliders_);
+    if (solid.rescued) report.flags |= kStepRescued;
+    if (solid.unrecoverable) report.flags |= kStepUnrecoverable;
+    report.max_substeps = std::max(report.max_substeps, solid.substeps);
+  }
   ++step_count_;
   // advance by multiplication, not accumulation, so long runs keep an exact clock
   time_ = static_cast<Real>(step_count_) * settings_.time_step;
   return report;
 }
 
-bool World::try_step(ClothBody& body, int substeps, Real& energy) {
+bool World::try_step(std::size_t cloth, int substeps, Real& energy) {
+  ClothBody& body = cloths_[cloth];
   const Real h = settings_.time_step / substeps;
   for (int s = 0; s < substeps; ++s) {
     body.integrator().step(body, body.state(), time_ + s * h, h);
     limit_stretch(body.model(), body.inv_mass(), body.params().stretch, h, body.state());
     resolve_collisions(colliders_, body.inv_mass(), body.params().thickness, body.state());
+    if (body.params().self_collision) {
+      self_collision_[cloth].resolve(body.model().triangles, body.inv_mass(),
+                                     body.params().thickness, body.state());
+    }
     apply_constraints(body.constraints(), body.state());
   }
   return healthy(body, energy);

@@ -5,7 +5,9 @@
 #include <vector>
 
 #include "core/cloth_body.hpp"
+#include "core/cloth_self_collision.hpp"
 #include "core/collider.hpp"
+#include "core/solid_system.hpp"
 
 namespace felt {
 
@@ -22,6 +24,13 @@ struct WorldSettings {
   Real max_energy_growth = 2;
 };
 
+/// What a body id names: a cloth or a soft solid, and its index among its kind.
+struct BodyRef {
+  enum class Kind : std::uint8_t { kCloth, kSolid };
+  Kind kind = Kind::kCloth;
+  std::uint32_t index = 0;
+};
+
 /// What happened in one step, as bit flags (DESIGN "numerical health").
 enum StepFlag : std::uint32_t {
   kStepOk = 0,
@@ -36,25 +45,42 @@ struct StepReport {
 
 class World {
  public:
-  explicit World(WorldSettings settings = {});
+  explicit World(WorldSettings settings = {}, SolidStepSettings solid_settings = {});
 
   const WorldSettings& settings() const { return settings_; }
 
-  /// Adds a body and returns its index.
+  /// Adds a cloth or a solid and returns its body id. Ids count every body in the order added,
+  /// whatever its kind.
   std::uint32_t add_body(ClothBody body);
-  /// Mutable access; anything that edits a body through it makes the next step recompute the
-  /// energies its health check starts from.
-  std::vector<ClothBody>& bodies() {
+  std::uint32_t add_body(SolidBody body);
+  std::size_t body_count() const { return refs_.size(); }
+  const BodyRef& body_ref(std::uint32_t id) const { return refs_.at(id); }
+  /// The cloth with body id `id`, or null when it is a solid.
+  ClothBody* cloth(std::uint32_t id);
+  const ClothBody* cloth(std::uint32_t id) const;
+  /// Applies `force` at vertex `vertex` of what clients see of body `id` (the cloth's particle;
+  /// for a solid, its fine surface vertex spread over the nodes that carry it) for the next step.
+  void add_surface_force(std::uint32_t id, std::uint32_t vertex, const Vec3& force);
+  /// How many vertices clients see of body `id`: a cloth's particles, a solid's fine surface
+  /// vertices or, without one, its nodes.
+  std::size_t surface_vertex_count(std::uint32_t id) const;
+
+  /// Cloths by index among cloths. Mutable access: anything that edits a cloth through it makes
+  /// the next step recompute the energies its health check starts from.
+  std::vector<ClothBody>& cloths() {
     energy_valid_ = false;
-    return bodies_;
+    return cloths_;
   }
+  const std::vector<ClothBody>& cloths() const { return cloths_; }
+  SolidSystem& solids() { return solids_; }
+  const SolidSystem& solids() const { return solids_; }
   void add_collider(const Collider& collider) { colliders_.push_back(collider); }
   const std::vector<Collider>& colliders() const { return colliders_; }
-  const std::vector<ClothBody>& bodies() const { return bodies_; }
 
-  /// Advances every body by one time step. A body whose step leaves a non-finite or exploding
+  /// Advances every body by one time step. A cloth whose step leaves a non-finite or exploding
   /// state is rolled back and stepped again with 2, 4, ... substeps; if none works it is rolled
-  /// back and brought to rest. Nothing non-finite survives a step.
+  /// back and brought to rest. The solids step together (they collide with each other) under
+  /// the same rule. Nothing non-finite survives a step.
   StepReport step();
 
   Real time() const { return time_; }
@@ -64,11 +90,14 @@ class World {
   /// Steps one body over [time_, time_ + h] in `substeps` equal parts; false when unhealthy.
   /// `energy` holds the body's kinetic plus elastic energy at the start, and at the end when
   /// the step was healthy.
-  bool try_step(ClothBody& body, int substeps, Real& energy);
+  bool try_step(std::size_t cloth, int substeps, Real& energy);
   bool healthy(const ClothBody& body, Real& energy) const;
 
   WorldSettings settings_;
-  std::vector<ClothBody> bodies_;
+  std::vector<ClothBody> cloths_;
+  std::vector<ClothSelfCollision> self_collision_;  ///< per cloth; keeps its hash between steps
+  SolidSystem solids_;
+  std::vector<BodyRef> refs_;
   std::vector<Collider> colliders_;
   /// kinetic + elastic energy of each body after the last step, reused as the next step's
   /// starting energy unless bodies() was handed out in between

@@ -184,16 +184,26 @@ void reply_body_updated(Session& session, std::uint64_t request_id, std::uint32_
   session.send(reply);
 }
 
-bool known_body(Session& session, std::uint64_t request_id, std::uint32_t body_id) {
-  if (body_id < session.scene()->bodies().size()) return true;
-  session.send_error(request_id, v1::ERROR_CODE_UNKNOWN_ID,
-                     "no body " + std::to_string(body_id) + " in this scene");
-  return false;
+/// True when `body_id` names a cloth of the session's scene; answers with an error otherwise.
+bool known_cloth(Session& session, std::uint64_t request_id, std::uint32_t body_id) {
+  const auto& bodies = session.scene()->bodies();
+  if (body_id >= bodies.size()) {
+    session.send_error(request_id, v1::ERROR_CODE_UNKNOWN_ID,
+                       "no body " + std::to_string(body_id) + " in this scene");
+    return false;
+  }
+  if (bodies[body_id].kind != "cloth") {
+    session.send_error(request_id, v1::ERROR_CODE_BAD_REQUEST,
+                       "body " + std::to_string(body_id) + " is a " + bodies[body_id].kind +
+                           "; this request changes cloths only");
+    return false;
+  }
+  return true;
 }
 
 void handle_set_body_parameters(Session& session, std::uint64_t request_id,
                                 const v1::SetBodyParameters& set) {
-  if (!known_body(session, request_id, set.body_id())) return;
+  if (!known_cloth(session, request_id, set.body_id())) return;
   // everything is checked here, so the command applied by the physics thread cannot fail
   const auto bad = [&](const std::string& what) {
     session.send_error(request_id, v1::ERROR_CODE_BAD_REQUEST, what);
@@ -215,7 +225,7 @@ void handle_set_body_parameters(Session& session, std::uint64_t request_id,
     return bad("max_strain must be a finite number >= 0");
   }
   session.scene()->post([set](Scene& scene) {
-    ClothBody& body = scene.world.bodies()[set.body_id()];
+    ClothBody& body = *scene.world.cloth(set.body_id());
     ClothParams params = body.params();
     if (set.has_drag()) params.drag = set.drag();
     if (set.has_structural_stiffness()) {
@@ -236,7 +246,7 @@ void handle_set_body_parameters(Session& session, std::uint64_t request_id,
 
 void handle_pin_particles(Session& session, std::uint64_t request_id,
                           const v1::PinParticles& pins) {
-  if (!known_body(session, request_id, pins.body_id())) return;
+  if (!known_cloth(session, request_id, pins.body_id())) return;
   const std::uint32_t particles = session.scene()->bodies()[pins.body_id()].particles;
   for (const auto* list : {&pins.pin(), &pins.unpin()}) {
     for (std::uint32_t p : *list) {
@@ -249,7 +259,7 @@ void handle_pin_particles(Session& session, std::uint64_t request_id,
     }
   }
   session.scene()->post([pins](Scene& scene) {
-    ClothBody& body = scene.world.bodies()[pins.body_id()];
+    ClothBody& body = *scene.world.cloth(pins.body_id());
     for (std::uint32_t p : pins.unpin()) body.unpin(p);
     for (std::uint32_t p : pins.pin()) body.pin(p);
   });

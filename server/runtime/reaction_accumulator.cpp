@@ -47,11 +47,10 @@ void ReactionAccumulator::apply_and_clear(World& world) {
       reaction.samples = 0;
     }
     for (const ParticleForce& pf : reaction.held) {
-      if (pf.body_id >= world.bodies().size()) continue;
       // ids come from a snapshot, so check them against the world they are applied to
-      ClothBody& body = world.bodies()[pf.body_id];
-      if (pf.particle >= body.model().particle_count()) continue;
-      body.add_external_force(pf.particle, pf.force);
+      if (pf.body_id >= world.body_count()) continue;
+      if (pf.particle >= world.surface_vertex_count(pf.body_id)) continue;
+      world.add_surface_force(pf.body_id, pf.particle, pf.force);
     }
     it = reaction.closed ? reactions_.erase(it) : std::next(it);
   }

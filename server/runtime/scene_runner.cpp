@@ -19,13 +19,13 @@ constexpr double kStatsWindowSeconds = 0.5;
 
 SceneRunner::SceneRunner(Scene scene)
     : scene_(std::move(scene)), name_(scene_.name), haptics_(scene_.haptics) {
-  const auto& bodies = scene_.world.bodies();
-  for (std::uint32_t id = 0; id < bodies.size(); ++id) {
-    bodies_.push_back({id, bodies[id].name(), "cloth",
-                       static_cast<std::uint32_t>(bodies[id].model().particle_count()),
-                       static_cast<std::uint32_t>(bodies[id].model().triangles.size())});
-  }
   publish();
+  for (const BodySnapshot& body : latest()->bodies) {
+    const bool cloth = scene_.world.body_ref(body.body_id).kind == BodyRef::Kind::kCloth;
+    bodies_.push_back({body.body_id, body.name, cloth ? "cloth" : "solid",
+                       static_cast<std::uint32_t>(body.positions.size()),
+                       static_cast<std::uint32_t>(body.triangles().size())});
+  }
 }
 
 SceneRunner::~SceneRunner() {
@@ -66,7 +66,7 @@ RunnerStats SceneRunner::stats() const {
 }
 
 void SceneRunner::publish() {
-  latest_.store(make_snapshot(scene_.world));
+  latest_.store(make_snapshot(scene_.world, latest_.load().get()));
 }
 
 void SceneRunner::run(std::stop_token stop) {

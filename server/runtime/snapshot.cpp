@@ -3,17 +3,48 @@
 #include "core/surface_normals.hpp"
 
 namespace felt {
+namespace {
 
-std::shared_ptr<const SceneSnapshot> make_snapshot(const World& world) {
+using SharedTriangles = std::shared_ptr<const std::vector<Triangle>>;
+
+/// A solid's visible surface and where its vertices are now.
+SharedTriangles solid_surface(const SolidBody& body, const SharedTriangles& previous,
+                              std::vector<Vec3>& positions) {
+  if (const EmbeddedSurface* fine = body.embedded_surface()) {
+    fine->positions(body.positions(), body.rest().tets, positions);
+    return previous ? previous : SharedTriangles(body.shared_embedded_surface(), &fine->triangles);
+  }
+  // the lattice's own surface over all its nodes; interior nodes are simply not referenced
+  positions = body.positions();
+  return previous ? previous
+                  : std::make_shared<const std::vector<Triangle>>(body.topology().surface);
+}
+
+}  // namespace
+
+std::shared_ptr<const SceneSnapshot> make_snapshot(const World& world,
+                                                   const SceneSnapshot* previous) {
   auto snapshot = std::make_shared<SceneSnapshot>();
   snapshot->step = world.step_count();
   snapshot->sim_time = world.time();
-  snapshot->bodies.reserve(world.bodies().size());
-  for (std::uint32_t id = 0; id < world.bodies().size(); ++id) {
-    const ClothBody& body = world.bodies()[id];
-    BodySnapshot& out = snapshot->bodies.emplace_back(
-        BodySnapshot{id, body.name(), body.shared_model(), body.state().x, {}});
-    compute_vertex_normals(out.positions, body.model().triangles, out.normals);
+  snapshot->bodies.reserve(world.body_count());
+  for (std::uint32_t id = 0; id < world.body_count(); ++id) {
+    const BodyRef& ref = world.body_ref(id);
+    BodySnapshot& out = snapshot->bodies.emplace_back();
+    out.body_id = id;
+    const bool reuse = previous && id < previous->bodies.size();
+    if (ref.kind == BodyRef::Kind::kCloth) {
+      const ClothBody& body = world.cloths()[ref.index];
+      out.name = body.name();
+      out.surface = SharedTriangles(body.shared_model(), &body.model().triangles);
+      out.positions = body.state().x;
+    } else {
+      const SolidBody& body = world.solids().bodies()[ref.index];
+      out.name = body.name();
+      out.surface =
+          solid_surface(body, reuse ? previous->bodies[id].surface : nullptr, out.positions);
+    }
+    compute_vertex_normals(out.positions, out.triangles(), out.normals);
   }
   return snapshot;
 }

@@ -7,7 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "core/cloth_model.hpp"
 #include "core/world.hpp"
 
 namespace felt {
@@ -15,11 +14,13 @@ namespace felt {
 struct BodySnapshot {
   std::uint32_t body_id = 0;
   std::string name;
-  std::shared_ptr<const ClothModel> model;  ///< triangles and uv; shared, never copied
+  /// the surface clients see: a cloth's triangles, a solid's fine embedded surface or its
+  /// lattice's surface; shared by every snapshot, never copied
+  std::shared_ptr<const std::vector<Triangle>> surface;
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;  ///< per vertex
 
-  const std::vector<Triangle>& triangles() const { return model->triangles; }
+  const std::vector<Triangle>& triangles() const { return *surface; }
 };
 
 struct SceneSnapshot {
@@ -28,7 +29,9 @@ struct SceneSnapshot {
   std::vector<BodySnapshot> bodies;
 };
 
-/// Copies what clients see of `world` now.
-std::shared_ptr<const SceneSnapshot> make_snapshot(const World& world);
+/// Copies what clients see of `world` now, sharing the surfaces of `previous` (the last
+/// snapshot of the same world, or null).
+std::shared_ptr<const SceneSnapshot> make_snapshot(const World& world,
+                                                   const SceneSnapshot* previous = nullptr);
 
 }  // namespace felt

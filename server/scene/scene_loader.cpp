@@ -12,130 +12,17 @@
 #include "core/cloth_grid.hpp"
 #include "core/mesh_cloth.hpp"
 #include "scene/obj_reader.hpp"
-#include "scene/scene_directory.hpp"
+#include "scene/object_reader.hpp"
+#include "scene/solid_reader.hpp"
+#include "scene/thesis_scene_reader.hpp"
 
 namespace felt {
 namespace {
 
-using nlohmann::json;
-
-// Thrown inside the loader only; load_scene turns it into a SceneError.
-struct Failure {
-  SceneError error;
-};
-
-[[noreturn]] void fail(const std::string& path, std::string message) {
-  throw Failure{{path, std::move(message)}};
-}
-
-std::string child(const std::string& path, std::string_view key) {
-  return path.empty() ? std::string(key) : path + "." + std::string(key);
-}
-
-std::string element(const std::string& path, std::size_t index) {
-  return path + "[" + std::to_string(index) + "]";
-}
-
-/// A JSON object being read, with its path for error messages.
-class ObjectReader {
- public:
-  ObjectReader(const json& value, std::string path, std::initializer_list<std::string_view> keys)
-      : value_(value), path_(std::move(path)) {
-    if (!value_.is_object()) fail(path_, "must be an object");
-    for (const auto& [key, unused] : value_.items()) {
-      if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
-        fail(child(path_, key), "unknown key");
-      }
-    }
-  }
-
-  const std::string& path() const { return path_; }
-  bool has(std::string_view key) const { return value_.contains(key); }
-  const json& at(std::string_view key) const { return value_.at(key); }
-  std::string path_of(std::string_view key) const { return child(path_, key); }
-
-  Real number(std::string_view key, Real fallback) const {
-    if (!has(key)) return fallback;
-    const json& v = at(key);
-    if (!v.is_number()) fail(path_of(key), "must be a number");
-    const Real x = v.get<Real>();
-    if (!std::isfinite(x)) fail(path_of(key), "must be finite");
-    return x;
-  }
-
-  Real positive(std::string_view key, Real fallback) const {
-    const Real x = number(key, fallback);
-    if (!(x > 0)) fail(path_of(key), "must be > 0");
-    return x;
-  }
-
-  Real non_negative(std::string_view key, Real fallback) const {
-    const Real x = number(key, fallback);
-    if (x < 0) fail(path_of(key), "must be >= 0");
-    return x;
-  }
-
-  std::uint32_t count(std::string_view key, std::uint32_t fallback, std::uint32_t min,
-                      std::uint32_t max) const {
-    if (!has(key)) return fallback;
-    const json& v = at(key);
-    if (!v.is_number_integer()) fail(path_of(key), "must be an integer");
-    const auto n = v.get<std::int64_t>();
-    if (n < min || n > max) {
-      fail(path_of(key), "must be between " + std::to_string(min) + " and " + std::to_string(max));
-    }
-    return static_cast<std::uint32_t>(n);
-  }
-
-  bool boolean(std::string_view key, bool fallback) const {
-    if (!has(key)) return fallback;
-    if (!at(key).is_boolean()) fail(path_of(key), "must be true or false");
-    return at(key).get<bool>();
-  }
-
-  std::string string(std::string_view key, std::string fallback) const {
-    if (!has(key)) return fallback;
-    if (!at(key).is_string()) fail(path_of(key), "must be a string");
-    return at(key).get<std::string>();
-  }
-
-  Vec3 vec3(std::string_view key, const Vec3& fallback) const {
-    if (!has(key)) return fallback;
-    const json& v = at(key);
-    if (!v.is_array() || v.size() != 3) fail(path_of(key), "must be an array of 3 numbers");
-    Vec3 out;
-    for (int i = 0; i < 3; ++i) {
-      if (!v[i].is_number() || !std::isfinite(v[i].get<Real>())) {
-        fail(element(path_of(key), i), "must be a finite number");
-      }
-      out[i] = v[i].get<Real>();
-    }
-    return out;
-  }
-
- private:
-  const json& value_;
-  std::string path_;
-};
+using namespace scene_json;
 
 // Particles per body are capped so that a typo cannot ask for terabytes.
 constexpr std::uint32_t kMaxGridSide = 2048;
-
-Transform read_transform(const ObjectReader& reader) {
-  Transform transform;
-  if (!reader.has("transform")) return transform;
-  const ObjectReader t(reader.at("transform"), reader.path_of("transform"),
-                       {"rotate", "scale", "translate"});
-  transform.rotate_degrees = t.vec3("rotate", transform.rotate_degrees);
-  if (t.has("scale") && t.at("scale").is_number()) {
-    transform.scale = Vec3::Constant(t.positive("scale", 1));
-  } else {
-    transform.scale = t.vec3("scale", transform.scale);
-    if ((transform.scale.array() <= 0).any()) fail(t.path_of("scale"), "must be > 0");
-  }
-  transform.translate = t.vec3("translate", transform.translate);
-  return transform;
-}
 
 GridClothSpec read_grid(const ObjectReader& reader) {
   const ObjectReader grid(reader.at("grid"), reader.path_of("grid"),
@@ -166,6 +53,10 @@ ClothParams read_springs(const ObjectReader& body) {
   params.spring(SpringKind::kBend) = {true, 5, 0.005};
   params.drag = body.non_negative("drag", 0.005);
   params.thickness = body.non_negative("thickness", params.thickness);
+  params.self_collision = body.boolean("self_collision", params.self_collision);
+  if (params.self_collision && params.thickness == 0) {
+    fail(body.path_of("thickness"), "must be > 0 when self_collision is on");
+  }
   if (body.has("wind")) {
     const ObjectReader wind(body.at("wind"), body.path_of("wind"),
                             {"velocity", "drag_coefficient", "gust_amplitude", "gust_period"});
@@ -177,9 +68,9 @@ ClothParams read_springs(const ObjectReader& body) {
     w.gust_period = wind.positive("gust_period", w.gust_period);
   }
   if (body.has("stretch_limit")) {
-    const ObjectReader limit(
-        body.at("stretch_limit"), body.path_of("stretch_limit"),
-        {"enabled", "max_strain", "iterations", "position_correction", "velocity_correction"});
+    const ObjectReader limit(body.at("stretch_limit"), body.path_of("stretch_limit"),
+                             {"enabled", "max_strain", "max_compression", "iterations",
+                              "position_correction", "velocity_correction"});
     StretchLimit& stretch = params.stretch;
     stretch.enabled = limit.boolean("enabled", true);
     stretch.max_strain = limit.positive("max_strain", stretch.max_strain);
@@ -297,27 +188,45 @@ void read_anchors(const ObjectReader& body, ClothBody& cloth) {
   }
 }
 
-/// Counts `particles` against what the scene's limit has left.
-void take_particles(const std::string& path, std::size_t particles, std::size_t& particles_left) {
-  if (particles > particles_left) {
-    fail(path, std::to_string(particles) + " particles exceed the " +
-                   std::to_string(particles_left) + " the scene's particle limit leaves");
+/// "constraint_forces": [{"type": "sphere", "particle": 3, "center": [...], "radius": 0.5,
+/// "stiffness": 100, "damping": 20}, {"type": "plane", "particle": 4, "point": [...],
+/// "normal": [...]}]: Witkin's constraint forces.
+void read_constraint_forces(const ObjectReader& body, ClothBody& cloth) {
+  if (!body.has("constraint_forces")) return;
+  const json& list = body.at("constraint_forces");
+  if (!list.is_array()) fail(body.path_of("constraint_forces"), "must be an array");
+  const auto n = static_cast<std::uint32_t>(cloth.model().particle_count());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const ObjectReader c(
+        list[i], element(body.path_of("constraint_forces"), i),
+        {"type", "particle", "center", "radius", "point", "normal", "stiffness", "damping"});
+    ConstraintForce constraint;
+    if (!c.has("particle")) fail(c.path_of("particle"), "is required");
+    constraint.particle = c.count("particle", 0, 0, n - 1);
+    constraint.stiffness = c.non_negative("stiffness", 100);
+    constraint.damping = c.non_negative("damping", 20);
+    const std::string type = c.string("type", "");
+    if (type == "sphere") {
+      constraint.kind = ConstraintForce::Kind::kSphere;
+      constraint.point = c.vec3("center", Vec3::Zero());
+      constraint.radius = c.positive("radius", 1);
+    } else if (type == "plane") {
+      constraint.kind = ConstraintForce::Kind::kPlane;
+      constraint.point = c.vec3("point", cloth.state().x[constraint.particle]);
+      constraint.normal = c.vec3("normal", Vec3::UnitY());
+      if (constraint.normal.norm() == 0) fail(c.path_of("normal"), "must not be zero");
+    } else {
+      fail(c.path_of("type"), "must be sphere or plane");
+    }
+    cloth.add_constraint_force(constraint);
   }
-  particles_left -= particles;
 }
 
 /// A cloth from an OBJ file inside the asset root, transformed.
 ClothModel read_mesh_model(const ObjectReader& body, const SceneLoadOptions& options,
                            Real total_mass, std::size_t& particles_left) {
   const ObjectReader mesh(body.at("mesh"), body.path_of("mesh"), {"file", "transform"});
-  if (!mesh.has("file")) fail(mesh.path_of("file"), "is required");
-  if (options.asset_root.empty()) {
-    fail(mesh.path_of("file"), "meshes can only be loaded from scenes in the scene directory");
-  }
-  const std::string name = mesh.string("file", "");
-  const auto file = resolve_inside(options.asset_root, name);
-  if (!file) fail(mesh.path_of("file"), file.error());
-  auto triangles = read_obj_file(*file);
+  auto triangles = read_obj_file(asset_file(mesh, "file", options.asset_root));
   if (!triangles) fail(mesh.path_of("file"), triangles.error());
   take_particles(mesh.path_of("file"), triangles->positions.size(), particles_left);
   const Transform transform = read_transform(mesh);
@@ -360,6 +269,7 @@ ClothBody read_cloth(const ObjectReader& body, std::size_t index, const SceneLoa
   }
   read_constraints(body, cloth);
   read_anchors(body, cloth);
+  read_constraint_forces(body, cloth);
   return cloth;
 }
 
@@ -399,14 +309,20 @@ Collider read_collider(const json& value, const std::string& path) {
 Scene read_scene(const json& document, const SceneLoadOptions& options) {
   const ObjectReader root(
       document, "",
-      {"name", "time_step", "gravity", "max_speed", "haptics", "colliders", "bodies"});
+      {"name", "time_step", "gravity", "max_speed", "haptics", "colliders", "solids", "bodies"});
   WorldSettings settings;
   settings.time_step = root.positive("time_step", settings.time_step);
   if (settings.time_step > 0.1) fail(root.path_of("time_step"), "must be at most 0.1 s");
   settings.gravity = root.vec3("gravity", settings.gravity);
   settings.max_speed = root.positive("max_speed", settings.max_speed);
+  SolidStepSettings solid_settings;
+  if (root.has("solids")) {
+    solid_settings =
+        read_solid_settings(ObjectReader(root.at("solids"), root.path_of("solids"),
+                                         {"max_step", "contact_iterations", "min_depth"}));
+  }
 
-  Scene scene{root.string("name", "unnamed"), World(settings), ProxySettings{}};
+  Scene scene{root.string("name", "unnamed"), World(settings, solid_settings), ProxySettings{}};
   if (root.has("haptics")) {
     const ObjectReader haptics(root.at("haptics"), root.path_of("haptics"),
                                {"proxy_radius", "stiffness", "max_force"});
@@ -427,13 +343,25 @@ Scene read_scene(const json& document, const SceneLoadOptions& options) {
   if (!bodies.is_array()) fail("bodies", "must be an array");
   std::size_t particles_left = options.max_particles;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const ObjectReader body(
-        bodies[i], element("bodies", i),
-        {"name", "type", "grid", "mesh", "mass", "springs", "drag", "stretch_limit", "thickness",
-         "wind", "integrator", "pin", "constraints"});
-    const std::string type = body.string("type", "");
-    if (type != "cloth") fail(body.path_of("type"), "must be \"cloth\"");
-    scene.world.add_body(read_cloth(body, i, options, particles_left));
+    const std::string path = element("bodies", i);
+    const json& entry = bodies[i];
+    const json* type = entry.is_object() && entry.contains("type") ? &entry["type"] : nullptr;
+    if (type && *type == "cloth") {
+      const ObjectReader body(entry, path,
+                              {"name", "type", "grid", "mesh", "mass", "springs", "drag",
+                               "stretch_limit", "thickness", "self_collision", "wind", "integrator",
+                               "pin", "constraints", "anchors", "constraint_forces"});
+      scene.world.add_body(read_cloth(body, i, options, particles_left));
+    } else if (type && *type == "solid") {
+      const ObjectReader body(entry, path,
+                              {"name", "type", "lattice", "mesh", "tetgen", "torus", "sphere",
+                               "transform", "model", "node_mass", "friction", "self_collision",
+                               "mass_spring", "shape_matching", "fem", "pin"});
+      scene.world.add_body(
+          read_solid(body, i, options.asset_root, settings.time_step, particles_left));
+    } else {
+      fail(child(path, "type"), "must be \"cloth\" or \"solid\"");
+    }
   }
   return scene;
 }
@@ -469,6 +397,7 @@ std::expected<json, SceneError> read_scene_json(const std::filesystem::path& fil
   if (!in) return std::unexpected(SceneError{"", "cannot open " + file.string()});
   std::ostringstream text;
   text << in.rdbuf();
+  if (file.extension() == ".cfg") return thesis_scene_to_json(text.str(), file.string());
   return parse_json(text.str(), file.string());
 }
 

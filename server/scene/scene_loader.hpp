@@ -1,5 +1,5 @@
 #pragma once
-// Scene JSON -> core objects (docs/scene-format.md). Every mistake is reported with the JSON
+// Scene JSON -> core objects (docs/scenes.md). Every mistake is reported with the JSON
 // path of the bad value: "bodies[2].springs.shear.stiffness: must be > 0".
 
 #include <expected>
@@ -10,16 +10,9 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "scene/scene.hpp"
+#include "scene/scene_error.hpp"
 
 namespace felt {
-
-/// Why a scene did not load: where (a JSON path, empty for the whole document) and what.
-struct SceneError {
-  std::string path;
-  std::string message;
-
-  std::string what() const { return path.empty() ? message : path + ": " + message; }
-};
 
 /// What a scene may ask for and where its files come from.
 struct SceneLoadOptions {
@@ -41,7 +34,8 @@ std::expected<Scene, SceneError> load_scene_file(const std::filesystem::path& fi
 std::expected<nlohmann::json, SceneError> parse_json(std::string_view text,
                                                      const std::string& source);
 
-/// Reads a scene file as JSON without building it (for --set overrides before loading).
+/// Reads a scene file as JSON without building it (for --set overrides before loading). A
+/// ".cfg" file is in the second thesis's own format (scene/thesis_scene_reader.hpp).
 std::expected<nlohmann::json, SceneError> read_scene_json(const std::filesystem::path& file);
 
 }  // namespace felt

@@ -305,7 +305,7 @@ ClothRun run_cloth(std::string_view integrator, Real k, Real h) {
     }
   }
   run.wall_seconds = seconds(start);
-  const ClothBody& body = std::as_const(world).bodies()[0];
+  const ClothBody& body = std::as_const(world).cloths()[0];
   run.x = body.state().x;
   run.energy = cloth_energy(body);
   return run;

@@ -22,12 +22,12 @@ TEST(Anchor, OscillatesWithThePeriodOfItsSpring) {
   const Real m = 0.2, k = 80, h = 1e-4;
   World world(WorldSettings{Vec3::Zero(), h, 100, 6});
   world.add_body(lone_particle("velocity_verlet", m));
-  world.bodies()[0].set_anchor({0, Vec3(0.1, 0, 0), k, 0});
+  world.cloths()[0].set_anchor({0, Vec3(0.1, 0, 0), k, 0});
   std::vector<Real> crossings;
-  Real previous = world.bodies()[0].state().x[0].x() - 0.1;
+  Real previous = world.cloths()[0].state().x[0].x() - 0.1;
   for (int n = 1; n <= 20000; ++n) {
     world.step();
-    const Real offset = world.bodies()[0].state().x[0].x() - 0.1;
+    const Real offset = world.cloths()[0].state().x[0].x() - 0.1;
     if (previous < 0 && offset >= 0) {
       crossings.push_back((n - 1 + -previous / (offset - previous)) * h);  // interpolated
     }
@@ -45,21 +45,21 @@ TEST(Anchor, ImplicitEulerSettlesAtTheStaticEquilibriumAtAnyStep) {
   for (const Real h : {1e-3, 0.05, 1.0}) {
     World world(WorldSettings{g, h, 100, 6});
     world.add_body(lone_particle("implicit_euler", m));
-    world.bodies()[0].set_anchor({0, target, k, 2});
+    world.cloths()[0].set_anchor({0, target, k, 2});
     for (int n = 0; n < 20000 && n * h < 60; ++n) world.step();
-    EXPECT_LT((world.bodies()[0].state().x[0] - (target + m * g / k)).norm(), 1e-6) << h;
+    EXPECT_LT((world.cloths()[0].state().x[0] - (target + m * g / k)).norm(), 1e-6) << h;
   }
 }
 
 TEST(Anchor, MovingAPinnedParticleTakesItToTheTarget) {
   World world;
   world.add_body(lone_particle("symplectic_euler", 1));
-  world.bodies()[0].pin(0);
-  world.bodies()[0].move_particle(0, Vec3(1, 2, 3));
+  world.cloths()[0].pin(0);
+  world.cloths()[0].move_particle(0, Vec3(1, 2, 3));
   for (int n = 0; n < 10; ++n) world.step();
-  EXPECT_EQ(world.bodies()[0].state().x[0], Vec3(1, 2, 3));
-  world.bodies()[0].remove_anchor(0);  // removing an anchor it never had changes nothing
-  EXPECT_TRUE(world.bodies()[0].anchors().empty());
+  EXPECT_EQ(world.cloths()[0].state().x[0], Vec3(1, 2, 3));
+  world.cloths()[0].remove_anchor(0);  // removing an anchor it never had changes nothing
+  EXPECT_TRUE(world.cloths()[0].anchors().empty());
 }
 
 }  // namespace

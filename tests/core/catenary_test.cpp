@@ -39,7 +39,7 @@ TEST(Catenary, HangingChainMatchesTheAnalyticCurve) {
   params.drag = 0.05;
   World world(WorldSettings{Vec3(0, -9.81, 0), 2e-3, 100, 6});
   world.add_body(ClothBody("chain", model, params, make_integrator("implicit_euler")));
-  ClothBody& chain = world.bodies()[0];
+  ClothBody& chain = world.cloths()[0];
   chain.pin(0);
   chain.pin(links);
   for (int n = 0; n < 5000; ++n) world.step();

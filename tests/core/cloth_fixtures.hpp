@@ -59,13 +59,15 @@ inline World expect_top_row_pins_hold(std::string_view integrator, bool every_st
   world.add_body(ClothBody("c", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
                            make_integrator(integrator)));
   const auto pins = grid_pin_indices(spec, GridPinPreset::kTopRow);
-  for (std::uint32_t p : pins) world.bodies()[0].pin(p);
-  const std::vector<Vec3> start = world.bodies()[0].state().x;
+  for (std::uint32_t p : pins) world.cloths()[0].pin(p);
+  const std::vector<Vec3> start = world.cloths()[0].state().x;
   for (int n = 0; n < 400; ++n) {
     const StepReport report = world.step();
-    if (every_step_ok) EXPECT_EQ(report.flags, kStepOk) << "step " << n;
+    if (every_step_ok) {
+      EXPECT_EQ(report.flags, kStepOk) << "step " << n;
+    }
   }
-  const ClothBody& body = world.bodies()[0];
+  const ClothBody& body = world.cloths()[0];
   for (std::uint32_t p : pins) EXPECT_EQ(body.state().x[p], start[p]);
   EXPECT_LT(body.state().x[30].y(), start[30].y() - 0.002);  // the rest sags
   return world;

@@ -116,14 +116,14 @@ TEST(Collider, CoulombFrictionDeceleratesAtMuG) {
     return floor;
   }());
   world.add_body(ClothBody("puck", model, ClothParams{}, make_integrator("symplectic_euler")));
-  world.bodies()[0].state().v[0] = Vec3(v0, 0, 0);
+  world.cloths()[0].state().v[0] = Vec3(v0, 0, 0);
   for (int n = 1; n <= 300; ++n) {
     world.step();
-    ASSERT_NEAR(world.bodies()[0].state().v[0].x(), v0 - mu * g * n * h, 1e-9) << n;
-    ASSERT_NEAR(world.bodies()[0].state().x[0].y(), 0.005, 1e-12);
+    ASSERT_NEAR(world.cloths()[0].state().v[0].x(), v0 - mu * g * n * h, 1e-9) << n;
+    ASSERT_NEAR(world.cloths()[0].state().x[0].y(), 0.005, 1e-12);
   }
   for (int n = 0; n < 1000; ++n) world.step();
-  EXPECT_EQ(world.bodies()[0].state().v[0], Vec3::Zero());  // static friction holds it
+  EXPECT_EQ(world.cloths()[0].state().v[0], Vec3::Zero());  // static friction holds it
 }
 
 TEST(Collider, ClothDrapedOverABallNeverSinksIntoItOrTheFloor) {
@@ -145,7 +145,7 @@ TEST(Collider, ClothDrapedOverABallNeverSinksIntoItOrTheFloor) {
   world.add_collider(sphere(Vec3(0, 0.3, 0), 0.3));
   world.add_body(ClothBody("sheet", std::make_shared<const ClothModel>(make_grid_cloth(spec)),
                            params, make_integrator("symplectic_euler")));
-  const ClothBody& body = world.bodies()[0];
+  const ClothBody& body = world.cloths()[0];
   for (int n = 0; n < 4000; ++n) {
     world.step();
     for (const Vec3& x : body.state().x) {

@@ -246,7 +246,7 @@ std::pair<std::uint32_t, Real> run_stiff_cloth(std::string_view integrator, Real
   world.add_body(std::move(body));
   std::uint32_t flags = 0;
   for (int n = 0; n < 300; ++n) flags |= world.step().flags;
-  return {flags, world.bodies()[0].max_strain()};
+  return {flags, world.cloths()[0].max_strain()};
 }
 
 TEST(Imex, StiffClothThatExplicitSchemesCannotStep) {
@@ -291,7 +291,7 @@ TEST(Imex, DampsTheTurningOfStiffSprings) {
 
 TEST(Imex, PinsHoldExactlyAndTheMatrixIsFactorizedOnce) {
   World world = test::expect_top_row_pins_hold("imex", true);
-  ClothBody& body = world.bodies()[0];
+  ClothBody& body = world.cloths()[0];
   ImexIntegrator& imex = imex_of(body);
   EXPECT_EQ(imex.factorizations(), 1);
 

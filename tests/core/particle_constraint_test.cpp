@@ -24,13 +24,13 @@ TEST(ParticleConstraint, BeadOnAnInclinedWireFallsWithTheProjectedGravity) {
   const Vec3 d = Vec3(1, -1, 0).normalized();
   World world(WorldSettings{g, 1e-3, 100, 6});
   world.add_body(bead("velocity_verlet"));
-  world.bodies()[0].constrain(ParticleConstraint::Kind::kLine, 0, d);
+  world.cloths()[0].constrain(ParticleConstraint::Kind::kLine, 0, d);
   for (int n = 1; n <= 500; ++n) {
     world.step();
     const Real t = n * 1e-3;
     const Vec3 expected = Vec3(0, 1, 0) + 0.5 * g.dot(d) * d * t * t;
-    ASSERT_LT((world.bodies()[0].state().x[0] - expected).norm(), 1e-12) << n;
-    ASSERT_LT((world.bodies()[0].state().v[0] - g.dot(d) * d * t).norm(), 1e-12) << n;
+    ASSERT_LT((world.cloths()[0].state().x[0] - expected).norm(), 1e-12) << n;
+    ASSERT_LT((world.cloths()[0].state().v[0] - g.dot(d) * d * t).norm(), 1e-12) << n;
   }
 }
 
@@ -39,11 +39,11 @@ TEST(ParticleConstraint, BeadOnATiltedPlaneSlidesDownItsSlope) {
   const Vec3 n = Vec3(0, 1, 1).normalized();  // a 45° slope facing +y +z
   World world(WorldSettings{g, 1e-3, 100, 6});
   world.add_body(bead("velocity_verlet"));
-  world.bodies()[0].constrain(ParticleConstraint::Kind::kPlane, 0, n);
+  world.cloths()[0].constrain(ParticleConstraint::Kind::kPlane, 0, n);
   for (int k = 0; k < 300; ++k) world.step();
   const Real t = 0.3;
   const Vec3 along = g - g.dot(n) * n;
-  EXPECT_LT((world.bodies()[0].state().x[0] - (Vec3(0, 1, 0) + 0.5 * along * t * t)).norm(), 1e-12);
+  EXPECT_LT((world.cloths()[0].state().x[0] - (Vec3(0, 1, 0) + 0.5 * along * t * t)).norm(), 1e-12);
 }
 
 TEST(ParticleConstraint, CurtainRingsStayOnTheirRailUnderStretchLimiting) {
@@ -60,7 +60,7 @@ TEST(ParticleConstraint, CurtainRingsStayOnTheirRailUnderStretchLimiting) {
   World world;
   world.add_body(ClothBody("curtain", std::make_shared<const ClothModel>(make_grid_cloth(spec)),
                            params, make_integrator("symplectic_euler")));
-  ClothBody& curtain = world.bodies()[0];
+  ClothBody& curtain = world.cloths()[0];
   curtain.pin(0);
   for (std::uint32_t ring = 1; ring < spec.nx; ++ring) {
     curtain.constrain(ParticleConstraint::Kind::kLine, ring, Vec3::UnitX());
@@ -69,12 +69,12 @@ TEST(ParticleConstraint, CurtainRingsStayOnTheirRailUnderStretchLimiting) {
   for (int n = 0; n < 3000; ++n) {
     world.step();
     for (std::uint32_t ring = 1; ring < spec.nx; ++ring) {
-      ASSERT_NEAR(world.bodies()[0].state().x[ring].y(), rail_y, 1e-12);
-      ASSERT_NEAR(world.bodies()[0].state().x[ring].z(), 0, 1e-12);
+      ASSERT_NEAR(world.cloths()[0].state().x[ring].y(), rail_y, 1e-12);
+      ASSERT_NEAR(world.cloths()[0].state().x[ring].z(), 0, 1e-12);
     }
   }
   // the free end ring is not stuck: the sagging cloth pulled it along the rail, inward
-  EXPECT_LT(world.bodies()[0].state().x[spec.nx - 1].x(), 0.5 - 1e-3);
+  EXPECT_LT(world.cloths()[0].state().x[spec.nx - 1].x(), 0.5 - 1e-3);
 }
 
 }  // namespace

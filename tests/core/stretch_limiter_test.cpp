@@ -114,9 +114,9 @@ TEST(StretchLimiter, SpringlessClothIsHeldByConstraintsAlone) {
   world.add_body(ClothBody("c", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
                            make_integrator("symplectic_euler")));
   for (std::uint32_t pin : grid_pin_indices(spec, GridPinPreset::kTopCorners)) {
-    world.bodies()[0].pin(pin);
+    world.cloths()[0].pin(pin);
   }
-  const ClothBody& body = world.bodies()[0];
+  const ClothBody& body = world.cloths()[0];
   Real lowest = 0;
   for (int n = 0; n < 1000; ++n) {
     ASSERT_EQ(world.step().flags, kStepOk) << "step " << n;
@@ -149,12 +149,12 @@ TEST(StretchLimiter, HangingClothNeverExceedsTheLimitAfterAnyStep) {
     world.add_body(ClothBody("c", std::make_shared<const ClothModel>(make_grid_cloth(spec)), p,
                              make_integrator("symplectic_euler")));
     for (std::uint32_t pin : grid_pin_indices(spec, GridPinPreset::kTopCorners)) {
-      world.bodies()[0].pin(pin);
+      world.cloths()[0].pin(pin);
     }
     Real worst = 0;
     for (int n = 0; n < 3000; ++n) {
       world.step();
-      worst = std::max(worst, world.bodies()[0].max_strain());
+      worst = std::max(worst, world.cloths()[0].max_strain());
     }
     return worst;
   };

@@ -43,7 +43,7 @@ TEST(World, HangingClothPinsCarryItsWholeWeight) {
   World world(WorldSettings{Vec3(0, -9.81, 0), 1e-3, 100, 6});
   world.add_body(make_cloth(spec, params(100, 0.05), "symplectic_euler", GridPinPreset::kTopRow));
   for (int n = 0; n < 20000; ++n) world.step();
-  const ClothBody& body = world.bodies()[0];
+  const ClothBody& body = world.cloths()[0];
   ASSERT_LT(body.kinetic_energy(), 1e-12);
 
   std::vector<Vec3> f(body.model().particle_count());
@@ -65,7 +65,7 @@ TEST(World, PinnedParticlesNeverMove) {
   const GridClothSpec spec = small_grid();
   World world;
   world.add_body(make_cloth(spec, params(), "explicit_euler", GridPinPreset::kFourCorners));
-  const ClothBody& body = world.bodies()[0];
+  const ClothBody& body = world.cloths()[0];
   const auto pins = grid_pin_indices(spec, GridPinPreset::kFourCorners);
   std::vector<Vec3> start;
   for (std::uint32_t p : pins) start.push_back(body.state().x[p]);
@@ -85,8 +85,8 @@ TEST(World, ExplodingClothIsRolledBackAndNeverNonFinite) {
   std::uint32_t flags = 0;
   for (int n = 0; n < 300; ++n) {
     flags |= world.step().flags;
-    for (const Vec3& x : world.bodies()[0].state().x) ASSERT_TRUE(x.allFinite()) << "step " << n;
-    for (const Vec3& v : world.bodies()[0].state().v) ASSERT_LE(v.norm(), 50.0) << "step " << n;
+    for (const Vec3& x : world.cloths()[0].state().x) ASSERT_TRUE(x.allFinite()) << "step " << n;
+    for (const Vec3& v : world.cloths()[0].state().v) ASSERT_LE(v.norm(), 50.0) << "step " << n;
   }
   EXPECT_TRUE(flags & kStepUnrecoverable);
 }
@@ -115,7 +115,7 @@ TEST(World, ExplicitEulerStartsFromRestWithoutARescue) {
   World world(WorldSettings{Vec3(0, -9.81, 0), 1e-4, 100, 6});
   world.add_body(make_cloth(small_grid(), params(), "explicit_euler", GridPinPreset::kTopCorners));
   for (int n = 0; n < 100; ++n) ASSERT_EQ(world.step().flags, kStepOk) << "step " << n;
-  EXPECT_LT(world.bodies()[0].state().x[63].y(), 1 - 0.25 - 1e-4);  // the free corner fell
+  EXPECT_LT(world.cloths()[0].state().x[63].y(), 1 - 0.25 - 1e-4);  // the free corner fell
 }
 
 TEST(World, SameInputsGiveBitIdenticalStates) {

@@ -143,6 +143,53 @@ TEST_F(FeltdTest, ProxyPushedIntoTheClothIsPushedBackOut) {
   EXPECT_EQ(free.force().z(), 0);
 }
 
+TEST_F(FeltdTest, SoftSolidsStreamTheirFineSurfaceAndCanBeTouched) {
+  Client client;
+  connect(client);
+  client.hello("test");
+  const v1::SceneLoaded loaded = client.load_scene_by_name("thesis/three_cubes");
+  ASSERT_EQ(loaded.bodies_size(), 3);
+  for (const v1::BodyInfo& body : loaded.bodies()) {
+    EXPECT_EQ(body.kind(), "solid");
+    EXPECT_EQ(body.particles(), 2402u);  // the fine 20 x 20 x 20 box surface (Table 7.1)
+    EXPECT_EQ(body.triangles(), 4800u);
+  }
+  client.subscribe_frames(30, true);
+  const auto first = client.next_frame(5s);
+  ASSERT_TRUE(first);
+  ASSERT_EQ(first->bodies_size(), 3);
+  EXPECT_EQ(first->bodies(2).positions_size(), 3 * 2402);
+  EXPECT_EQ(first->bodies(2).triangles_size(), 3 * 4800);
+
+  // the top cube's highest fine vertex: press the proxy 1 cm into it from above
+  const v1::BodyFrame& top = first->bodies(2);
+  int highest = 0;
+  for (int v = 1; v < 2402; ++v) {
+    if (vertex(top, v)[1] > vertex(top, highest)[1]) highest = v;
+  }
+  auto at = vertex(top, highest);
+  at[1] += 0.02 - 0.01;  // proxy radius 2 cm
+  const v1::ForceUpdate force = client.proxy_update(0, at);
+  ASSERT_TRUE(force.in_contact());
+  EXPECT_GT(force.force().y(), 0);
+
+  // the cubes fall and settle onto each other; their surfaces stay finite
+  std::optional<v1::Frame> later;
+  for (int i = 0; i < 10; ++i) later = client.next_frame(5s);
+  ASSERT_TRUE(later);
+  EXPECT_LT(vertex(later->bodies(2), highest)[1], vertex(top, highest)[1]);
+  for (const auto& body : later->bodies()) {
+    for (float x : body.positions()) ASSERT_TRUE(std::isfinite(x));
+  }
+
+  // cloth-only requests name the body's kind
+  v1::SetBodyParameters set;
+  set.set_body_id(0);
+  set.set_drag(0.1);
+  expect_error([&] { client.set_body_parameters(set); }, v1::ERROR_CODE_BAD_REQUEST);
+  expect_error([&] { client.pin_particles(0, {1}, {}); }, v1::ERROR_CODE_BAD_REQUEST);
+}
+
 TEST_F(FeltdTest, BadRequestsGetErrorsAndTheConnectionStaysUsable) {
   Client client;
   connect(client);

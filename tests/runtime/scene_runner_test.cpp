@@ -65,8 +65,8 @@ TEST(SceneRunner, AppliesPostedCommandsBetweenSteps) {
   std::atomic<std::uint64_t> seen_at{0};
   // lift a particle and pin it there: every snapshot after the command shows it lifted
   runner.post([&](Scene& scene) {
-    scene.world.bodies()[0].state().x[60] += Vec3(0, 0.1, 0);
-    scene.world.bodies()[0].pin(60);
+    scene.world.cloths()[0].state().x[60] += Vec3(0, 0.1, 0);
+    scene.world.cloths()[0].pin(60);
     seen_at = scene.world.step_count() + 1;
   });
   ASSERT_TRUE(wait_for([&] { return seen_at > 0 && runner.latest()->step >= seen_at; }));

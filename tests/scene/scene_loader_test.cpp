@@ -31,8 +31,8 @@ TEST(SceneLoader, LoadsTheDefaultScene) {
   const auto scene = load_scene_file(std::string(FELT_SCENE_DIR) + "/default.json");
   ASSERT_TRUE(scene) << scene.error().what();
   EXPECT_EQ(scene->name, "default");
-  ASSERT_EQ(scene->world.bodies().size(), 1u);
-  const ClothBody& curtain = scene->world.bodies()[0];
+  ASSERT_EQ(scene->world.cloths().size(), 1u);
+  const ClothBody& curtain = scene->world.cloths()[0];
   EXPECT_EQ(curtain.name(), "curtain");
   EXPECT_EQ(curtain.model().particle_count(), 400u);
   EXPECT_EQ(curtain.integrator().name(), "symplectic_euler");
@@ -50,7 +50,7 @@ TEST(SceneLoader, AppliesDefaultsAndGivenValues) {
   ASSERT_TRUE(scene) << scene.error().what();
   EXPECT_DOUBLE_EQ(scene->world.settings().time_step, 0.002);
   EXPECT_EQ(scene->world.settings().gravity, Vec3(0, 0, -1));
-  const ClothBody& body = scene->world.bodies()[0];
+  const ClothBody& body = scene->world.cloths()[0];
   EXPECT_EQ(body.name(), "cloth0");
   EXPECT_EQ(body.model().particle_count(), 12u);
   Real total = 0;
@@ -88,7 +88,7 @@ TEST(SceneLoader, NamesThePathOfTheBadValue) {
 
   doc = minimal_cloth();
   doc["bodies"][0]["type"] = "jelly";
-  EXPECT_EQ(error_of(doc), "bodies[0].type: must be \"cloth\"");
+  EXPECT_EQ(error_of(doc), "bodies[0].type: must be \"cloth\" or \"solid\"");
 }
 
 TEST(SceneLoader, UnknownIntegratorListsTheKnownOnes) {
@@ -128,7 +128,7 @@ TEST(SceneLoader, ReadsCollidersAndNamesTheirBadValues) {
   ASSERT_EQ(scene->world.colliders().size(), 2u);
   EXPECT_EQ(scene->world.colliders()[1].shape, Collider::Shape::kSphere);
   EXPECT_DOUBLE_EQ(scene->world.colliders()[1].radius, 0.3);
-  EXPECT_DOUBLE_EQ(scene->world.bodies()[0].params().thickness, 0.01);
+  EXPECT_DOUBLE_EQ(scene->world.cloths()[0].params().thickness, 0.01);
 
   json doc = minimal_cloth();
   doc["colliders"] = json::parse(R"([{"type": "plane"}, {"type": "sphere", "radius": -1}])");
@@ -147,7 +147,7 @@ TEST(SceneLoader, MeshClothFromAnObjInsideTheAssetRoot) {
   options.asset_root = FELT_SCENE_DIR;
   const auto scene = load_scene(doc, options);
   ASSERT_TRUE(scene) << scene.error().what();
-  const ClothBody& bunny = scene->world.bodies()[0];
+  const ClothBody& bunny = scene->world.cloths()[0];
   EXPECT_EQ(bunny.model().particle_count(), 1839u);
   EXPECT_EQ(bunny.model().triangles.size(), 3674u);
   EXPECT_TRUE(bunny.is_pinned(5));
@@ -167,7 +167,7 @@ TEST(SceneLoader, MeshClothFromAnObjInsideTheAssetRoot) {
   EXPECT_EQ(load_scene(doc, options).error().what(),
             "bodies[0].mesh.file: no file \"meshes/missing.obj\"");
   doc["bodies"][0]["mesh"]["file"] = "meshes/bunny.obj";
-  EXPECT_NE(load_scene(doc).error().what().find("meshes can only be loaded"), std::string::npos);
+  EXPECT_NE(load_scene(doc).error().what().find("files can only be loaded"), std::string::npos);
   doc["bodies"][0]["pin"] = "top_row";
   EXPECT_NE(load_scene(doc, options).error().what().find("a mesh cloth takes"), std::string::npos);
   doc["bodies"][0]["pin"] = "none";
@@ -178,7 +178,7 @@ TEST(SceneLoader, MeshClothFromAnObjInsideTheAssetRoot) {
 TEST(SceneLoader, EveryShippedSceneLoads) {
   // what feltd run and a client's LoadScene by name would see
   for (const auto& entry : std::filesystem::recursive_directory_iterator(FELT_SCENE_DIR)) {
-    if (entry.path().extension() != ".json") continue;
+    if (entry.path().extension() != ".json" && entry.path().extension() != ".cfg") continue;
     SceneLoadOptions options;
     options.asset_root = FELT_SCENE_DIR;
     const auto scene = load_scene_file(entry.path(), options);
@@ -193,7 +193,7 @@ TEST(SceneLoader, ReadsPlaneAndLineConstraints) {
           {"type": "plane", "particles": [5], "normal": [0, 0, 1]}])");
   const auto scene = load_scene(doc);
   ASSERT_TRUE(scene) << scene.error().what();
-  const auto& constraints = scene->world.bodies()[0].constraints();
+  const auto& constraints = scene->world.cloths()[0].constraints();
   ASSERT_EQ(constraints.size(), 3u);
   EXPECT_EQ(constraints[1].particle, 2u);
   EXPECT_EQ(constraints[1].direction, Vec3::UnitX());  // normalized
@@ -212,17 +212,32 @@ TEST(SceneLoader, PinPresetsAndLists) {
   doc["bodies"][0]["pin"] = "four_corners";
   auto scene = load_scene(doc);
   ASSERT_TRUE(scene);
-  for (std::uint32_t p : {0u, 3u, 8u, 11u}) EXPECT_TRUE(scene->world.bodies()[0].is_pinned(p));
-  EXPECT_FALSE(scene->world.bodies()[0].is_pinned(5));
+  for (std::uint32_t p : {0u, 3u, 8u, 11u}) EXPECT_TRUE(scene->world.cloths()[0].is_pinned(p));
+  EXPECT_FALSE(scene->world.cloths()[0].is_pinned(5));
 
   doc["bodies"][0]["pin"] = {5};
   scene = load_scene(doc);
   ASSERT_TRUE(scene);
-  EXPECT_TRUE(scene->world.bodies()[0].is_pinned(5));
-  EXPECT_FALSE(scene->world.bodies()[0].is_pinned(0));
+  EXPECT_TRUE(scene->world.cloths()[0].is_pinned(5));
+  EXPECT_FALSE(scene->world.cloths()[0].is_pinned(0));
 
   doc["bodies"][0]["pin"] = "everything";
   EXPECT_NE(error_of(doc).find("bodies[0].pin: must be none"), std::string::npos);
+}
+
+// Both keys are documented in scenes.md; the loader used to reject them as unknown.
+TEST(SceneLoader, ReadsAnchorsAndMaxCompression) {
+  json doc = minimal_cloth();
+  doc["bodies"][0]["anchors"] =
+      json::array({{{"particle", 5}, {"target", {0, 2, 0}}, {"stiffness", 50}, {"damping", 0.5}}});
+  doc["bodies"][0]["stretch_limit"] = {{"max_strain", 0.1}, {"max_compression", 0.05}};
+  const auto scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  const ClothBody& body = scene->world.cloths()[0];
+  ASSERT_EQ(body.anchors().size(), 1u);
+  EXPECT_EQ(body.anchors()[0].particle, 5u);
+  EXPECT_EQ(body.anchors()[0].target, Vec3(0, 2, 0));
+  EXPECT_DOUBLE_EQ(body.params().stretch.max_compression, 0.05);
 }
 
 }  // namespace

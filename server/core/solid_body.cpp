@@ -1,0 +1,184 @@
+#include "core/solid_body.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+#include <variant>
+
+#include "core/check.hpp"
+#include "core/corotated_fem.hpp"
+#include "core/generalized_mass_spring.hpp"
+#include "core/shape_matching.hpp"
+
+namespace felt {
+namespace {
+
+using Model = std::variant<GeneralizedMassSpring, ShapeMatching, CorotatedFem>;
+
+Model make_model(const TetMesh& rest, const TetTopology& topology, const SolidMaterial& material) {
+  switch (material.model) {
+    case SolidModel::kMassSpring:
+      return GeneralizedMassSpring(rest, topology, material.mass_spring);
+    case SolidModel::kShapeMatching:
+      return ShapeMatching(rest, material.shape_matching);
+    case SolidModel::kCorotatedFem:
+      return CorotatedFem(rest, material.fem);
+  }
+  check_failed("unknown solid model");
+}
+
+/// The largest step with which position Verlet (velocity from the backward difference) stays
+/// stable on v̇ = −ω² x − c v: ω² h² + 2 c h < 4. ω² and c are bounded by the largest block
+/// Gershgorin row sum of M⁻¹K and M⁻¹D over the free nodes.
+Real verlet_step_limit(std::span<const Real> stiffness, std::span<const Real> damping,
+                       std::span<const Real> inv_mass) {
+  Real omega_squared = 0;
+  Real rate = 0;
+  for (std::size_t n = 0; n < inv_mass.size(); ++n) {
+    omega_squared = std::max(omega_squared, stiffness[n] * inv_mass[n]);
+    rate = std::max(rate, damping[n] * inv_mass[n]);
+  }
+  // (−c + √(c² + 4ω²)) / ω², written without the cancellation and the 0/0 at ω = 0
+  return 4 / (rate + std::sqrt(rate * rate + 4 * omega_squared));
+}
+
+/// Room for the stiffness a deformed body gains over the rest stiffness the bounds are taken
+/// from (stretched springs, squashed volumes).
+constexpr Real kDeformationMargin = 0.9;
+
+}  // namespace
+
+struct SolidBody::ModelState {
+  Model model;
+  std::vector<Vec3> force;  ///< scratch for advance()
+};
+
+SolidBody::SolidBody(std::string name, TetMesh mesh, SolidMaterial material)
+    : name_(std::move(name)),
+      rest_(std::move(mesh)),
+      topology_(build_topology(rest_)),
+      material_(material),
+      rest_volume_(total_volume(rest_.nodes, rest_.tets)),
+      x_(rest_.nodes),
+      x_prev_(rest_.nodes),
+      v_(rest_.nodes.size(), Vec3::Zero()),
+      external_force_(rest_.nodes.size(), Vec3::Zero()) {
+  set_material(material);
+}
+
+SolidBody::~SolidBody() = default;
+SolidBody::SolidBody(SolidBody&&) noexcept = default;
+SolidBody& SolidBody::operator=(SolidBody&&) noexcept = default;
+
+void SolidBody::set_material(const SolidMaterial& material) {
+  FELT_CHECK(material.node_mass > 0 && material.friction >= 0);
+  material_ = material;
+  // a new model starts from the rest shape again (a shape-matching body forgets its plastic flow)
+  model_state_ = std::make_unique<ModelState>(
+      ModelState{make_model(rest_, topology_, material_), std::vector<Vec3>(x_.size())});
+  const bool first = inv_mass_.empty();
+  inv_mass_.resize(x_.size());
+  for (Real& inv : inv_mass_) {
+    if (first || inv > 0) inv = 1 / material_.node_mass;  // pinned nodes stay pinned
+  }
+}
+
+Real SolidBody::mass(std::uint32_t n) const {
+  FELT_CHECK(n < x_.size());
+  return material_.node_mass;
+}
+
+void SolidBody::pin(std::uint32_t n) {
+  FELT_CHECK(n < x_.size());
+  inv_mass_[n] = 0;
+  v_[n].setZero();
+}
+
+void SolidBody::unpin(std::uint32_t n) {
+  FELT_CHECK(n < x_.size());
+  inv_mass_[n] = 1 / material_.node_mass;
+}
+
+void SolidBody::clear_external_forces() {
+  std::ranges::fill(external_force_, Vec3::Zero());
+}
+
+void SolidBody::internal_forces(std::span<Vec3> f) const {
+  FELT_CHECK(f.size() == x_.size());
+  std::ranges::fill(f, Vec3::Zero());
+  std::visit(
+      [&](const auto& model) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(model)>, ShapeMatching>) {
+          model.add_forces(x_, v_, material_.node_mass, f);
+        } else {
+          model.add_forces(x_, v_, f);
+        }
+      },
+      model_state_->model);
+}
+
+void SolidBody::advance(Real h, const Vec3& gravity) {
+  FELT_CHECK(h > 0);
+  x_prev_ = x_;
+  std::vector<Vec3>& force = model_state_->force;
+  if (auto* matching = std::get_if<ShapeMatching>(&model_state_->model)) {
+    for (std::size_t n = 0; n < x_.size(); ++n) {
+      force[n] = gravity + inv_mass_[n] * external_force_[n];  // accelerations
+    }
+    matching->step(x_, v_, inv_mass_, force, h);
+  } else {
+    internal_forces(force);
+    // v is (x − x_prev)/h_prev (finish_step), so x + h v + ½h(h + h_prev) a is the time-corrected
+    // Verlet step x + (x − x_prev) h/h_prev + a h² of thesis 2 §4.5 with the acceleration term
+    // of an uneven grid, which equals a h² at a constant step and makes the first step (no
+    // history, v the initial velocity) the Taylor step x + h v + ½h² a.
+    const Real accel_scale = 0.5 * h * (h + previous_step_);
+    for (std::size_t n = 0; n < x_.size(); ++n) {
+      if (inv_mass_[n] == 0) continue;
+      const Vec3 a = gravity + inv_mass_[n] * (force[n] + external_force_[n]);
+      x_[n] += h * v_[n] + accel_scale * a;
+    }
+  }
+  previous_step_ = h;
+}
+
+void SolidBody::finish_step(Real h) {
+  FELT_CHECK(h > 0);
+  // the backward difference: the mean velocity over the step, including what collision
+  // handling did; it is also the velocity the damping forces see in the next step
+  for (std::size_t n = 0; n < x_.size(); ++n) v_[n] = (x_[n] - x_prev_[n]) / h;
+}
+
+Real SolidBody::stable_time_step() const {
+  return std::visit(
+      [&](const auto& model) -> Real {
+        if constexpr (std::is_same_v<std::decay_t<decltype(model)>, ShapeMatching>) {
+          return std::numeric_limits<Real>::infinity();  // unconditionally stable
+        } else {
+          return kDeformationMargin *
+                 verlet_step_limit(model.stiffness_bound(), model.damping_bound(), inv_mass_);
+        }
+      },
+      model_state_->model);
+}
+
+Real SolidBody::kinetic_energy() const {
+  Real sum = 0;
+  for (const Vec3& v : v_) sum += v.squaredNorm();
+  return 0.5 * material_.node_mass * sum;
+}
+
+Real SolidBody::elastic_energy() const {
+  return std::visit(
+      [&](const auto& model) -> Real {
+        if constexpr (std::is_same_v<std::decay_t<decltype(model)>, ShapeMatching>) {
+          return model.energy(x_, material_.node_mass);
+        } else {
+          return model.energy(x_);
+        }
+      },
+      model_state_->model);
+}
+
+}  // namespace felt

@@ -1,0 +1,164 @@
+#pragma once
+// A simulated soft solid (thesis 2): an immutable tetrahedral mesh and its topology, the
+// material of one of three models, and the state of its nodes.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/embedded_surface.hpp"
+#include "core/tet_mesh.hpp"
+
+namespace felt {
+
+enum class SolidModel : std::uint8_t {
+  kMassSpring,     ///< generalized mass-spring (Teschner et al. 2004), the thesis's choice
+  kShapeMatching,  ///< meshless shape matching (Müller et al. 2005)
+  kCorotatedFem,   ///< corotated linear finite elements, the accurate reference
+};
+
+/// Generalized mass-spring coefficients, Table B.1 defaults (thesis 2 §3.2.2, §6.2.1).
+struct MassSpringMaterial {
+  Real distance_stiffness = 20;  ///< k_D, N
+  Real volume_stiffness = 10;    ///< k_V, N (the thesis folds 1/(6V₀) into it)
+  Real damping = 1;              ///< d_C on the edges, N·s
+  Real area_stiffness = 0;       ///< k_A on the surface triangles, N; 0 switches the term off
+};
+
+/// Shape matching (Müller et al. 2005, thesis 2 §1.4).
+struct ShapeMatchingMaterial {
+  enum class Mode : std::uint8_t { kRigid, kLinear, kQuadratic };
+  Mode mode = Mode::kLinear;
+  Real beta = 0.5;  ///< how far the linear or quadratic fit replaces the rotation, 0..1
+  /// τ, s: each node is pulled to its goal by a spring m/τ², critically damped relative to the
+  /// cluster's rigid motion, so a deformation dies out within a few τ whatever the step size
+  /// (shape_matching.hpp says why not α = h/τ).
+  Real time_constant = 0.01;
+  bool clusters = false;  ///< one cluster per lattice cell (five tetrahedra) instead of one
+  /// Opt-in plasticity (O'Brien et al. 2002 strain split applied to the fit): deformation
+  /// beyond `yield` creeps into the rest shape at rate `creep` up to `max`.
+  Real plastic_yield = 0;  ///< 0 switches plasticity off
+  Real plastic_creep = 0;  ///< 1/s
+  Real plastic_max = 0;
+};
+
+/// Corotated linear elasticity, lumped masses.
+struct FemMaterial {
+  Real young_modulus = 1e4;  ///< Pa
+  Real poisson_ratio = 0.3;
+  Real damping = 0;  ///< stiffness-proportional Rayleigh damping, s
+};
+
+struct SolidMaterial {
+  SolidModel model = SolidModel::kMassSpring;
+  Real node_mass = 1;   ///< kg per node (Table B.1 "Mass")
+  Real friction = 0.5;  ///< Coulomb μ at contacts with other bodies and colliders
+  bool self_collision = false;
+  MassSpringMaterial mass_spring;
+  ShapeMatchingMaterial shape_matching;
+  FemMaterial fem;
+};
+
+class SolidBody {
+ public:
+  /// `mesh` must have positively oriented tetrahedra; its node positions are the rest shape
+  /// and the initial state (at rest).
+  SolidBody(std::string name, TetMesh mesh, SolidMaterial material);
+  ~SolidBody();
+  SolidBody(SolidBody&&) noexcept;
+  SolidBody& operator=(SolidBody&&) noexcept;
+
+  const std::string& name() const { return name_; }
+  const TetMesh& rest() const { return rest_; }
+  const TetTopology& topology() const { return topology_; }
+  const SolidMaterial& material() const { return material_; }
+  void set_material(const SolidMaterial& material);
+
+  std::size_t node_count() const { return x_.size(); }
+  std::vector<Vec3>& positions() { return x_; }
+  const std::vector<Vec3>& positions() const { return x_; }
+  /// Positions one step ago, for position Verlet.
+  std::vector<Vec3>& previous_positions() { return x_prev_; }
+  const std::vector<Vec3>& previous_positions() const { return x_prev_; }
+  std::vector<Vec3>& velocities() { return v_; }
+  const std::vector<Vec3>& velocities() const { return v_; }
+  std::span<const Real> inv_mass() const { return inv_mass_; }
+  Real mass(std::uint32_t n) const;
+
+  /// What a step changes and the external forces that drive it, so that a step that failed can
+  /// be undone and redone. Saving into the same object again reuses its storage.
+  struct StepState {
+    std::vector<Vec3> x, x_prev, v, external_force;
+    Real previous_step = 0;
+  };
+  void save_step_state(StepState& out) const {
+    out.x = x_;
+    out.x_prev = x_prev_;
+    out.v = v_;
+    out.external_force = external_force_;
+    out.previous_step = previous_step_;
+  }
+  void restore_step_state(const StepState& state) {
+    x_ = state.x;
+    x_prev_ = state.x_prev;
+    v_ = state.v;
+    external_force_ = state.external_force;
+    previous_step_ = state.previous_step;
+  }
+
+  void pin(std::uint32_t n);
+  void unpin(std::uint32_t n);
+
+  /// Adds a force on node n for the next step only (user and haptic forces): it acts in every
+  /// advance() until clear_external_forces(), which the caller calls after the step's last
+  /// substep.
+  void add_external_force(std::uint32_t n, const Vec3& force) { external_force_[n] += force; }
+  void clear_external_forces();
+
+  /// Elastic and damping forces of the model at the current positions and velocities,
+  /// written (not added) into f. Shape matching reports the force of its goal springs.
+  void internal_forces(std::span<Vec3> f) const;
+
+  /// Moves the nodes over one step of length h under the model, gravity and the external
+  /// forces, before collisions: position Verlet in the time-corrected form for a step length
+  /// that differs from the previous one, or the shape-matching update. Keeps the positions
+  /// before the step as the previous positions.
+  void advance(Real h, const Vec3& gravity);
+  /// Sets velocities from the positions after collision handling moved them.
+  void finish_step(Real h);
+  /// The largest step this body's stiffness allows for the explicit integration, s.
+  Real stable_time_step() const;
+
+  Real kinetic_energy() const;
+  Real elastic_energy() const;
+  Real volume() const { return total_volume(x_, rest_.tets); }
+  Real rest_volume() const { return rest_volume_; }
+
+  /// The fine surface clients see, when the body carries one.
+  const EmbeddedSurface* embedded_surface() const { return embedded_.get(); }
+  const std::shared_ptr<const EmbeddedSurface>& shared_embedded_surface() const {
+    return embedded_;
+  }
+  void set_embedded_surface(std::shared_ptr<const EmbeddedSurface> surface) {
+    embedded_ = std::move(surface);
+  }
+
+ private:
+  struct ModelState;  ///< per-model precomputation (rest lengths, FEM shape matrices, clusters)
+
+  std::string name_;
+  TetMesh rest_;
+  TetTopology topology_;
+  SolidMaterial material_;
+  Real rest_volume_ = 0;
+  std::vector<Vec3> x_, x_prev_, v_;
+  std::vector<Real> inv_mass_;
+  std::vector<Vec3> external_force_;
+  Real previous_step_ = 0;  ///< length of the last step, 0 before the first
+  std::unique_ptr<ModelState> model_state_;
+  std::shared_ptr<const EmbeddedSurface> embedded_;
+};
+
+}  // namespace felt

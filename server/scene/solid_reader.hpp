@@ -1,0 +1,24 @@
+#pragma once
+// Scene entries of soft solids ("type": "solid", docs/scenes.md) -> SolidBody.
+
+#include <cstddef>
+#include <filesystem>
+
+#include "core/solid_body.hpp"
+#include "core/solid_system.hpp"
+#include "scene/object_reader.hpp"
+
+namespace felt::scene_json {
+
+/// The solid described by `body`, the `index`th body of the scene. Files resolve inside
+/// `asset_root`; its nodes and fine vertices count against `particles_left`. `time_step` is
+/// the scene's: a material so stiff for its mass that the step would need absurdly many
+/// substeps is refused here rather than stalling the server.
+SolidBody read_solid(const ObjectReader& body, std::size_t index,
+                     const std::filesystem::path& asset_root, Real time_step,
+                     std::size_t& particles_left);
+
+/// The scene's "solids" settings of the contact pipeline.
+SolidStepSettings read_solid_settings(const ObjectReader& solids);
+
+}  // namespace felt::scene_json

@@ -1,0 +1,187 @@
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "scene/scene_loader.hpp"
+
+namespace felt {
+namespace {
+
+using nlohmann::json;
+
+json cube_scene() {
+  return json::parse(R"({
+    "bodies": [{ "type": "solid", "name": "cube",
+                 "lattice": { "cells": [5, 5, 5], "size": [1, 1, 1] },
+                 "transform": { "translate": [0, 0.6, 0] },
+                 "node_mass": 0.05,
+                 "mass_spring": { "distance_stiffness": 60, "volume_stiffness": 20, "damping": 2 } }]
+  })");
+}
+
+std::string error_of(const json& document) {
+  const auto scene = load_scene(document);
+  return scene ? std::string("(loaded)") : scene.error().what();
+}
+
+TEST(SolidReader, LatticeCubeWithTheThesisParameters) {
+  const auto scene = load_scene(cube_scene());
+  ASSERT_TRUE(scene) << scene.error().what();
+  ASSERT_EQ(scene->world.body_count(), 1u);
+  EXPECT_EQ(scene->world.body_ref(0).kind, BodyRef::Kind::kSolid);
+  const SolidBody& cube = scene->world.solids().bodies()[0];
+  EXPECT_EQ(cube.name(), "cube");
+  EXPECT_EQ(cube.node_count(), 216u);
+  EXPECT_EQ(cube.rest().tets.size(), 625u);
+  EXPECT_NEAR(cube.rest_volume(), 1.0, 1e-12);
+  EXPECT_DOUBLE_EQ(cube.material().mass_spring.distance_stiffness, 60);
+  EXPECT_DOUBLE_EQ(cube.material().mass_spring.volume_stiffness, 20);
+  EXPECT_DOUBLE_EQ(cube.material().mass_spring.damping, 2);
+  EXPECT_DOUBLE_EQ(cube.mass(0), 0.05);
+  // centred on the origin, then translated
+  Vec3 low = Vec3::Constant(1e9);
+  for (const Vec3& x : cube.positions()) low = low.cwiseMin(x);
+  EXPECT_LT((low - Vec3(-0.5, 0.1, -0.5)).norm(), 1e-12);
+}
+
+TEST(SolidReader, BodyIdsFollowTheSceneOrderAcrossKinds) {
+  json doc = cube_scene();
+  doc["bodies"].insert(doc["bodies"].begin(),
+                       json{{"type", "cloth"}, {"grid", {{"nx", 3}, {"ny", 3}}}});
+  const auto scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  EXPECT_EQ(scene->world.body_ref(0).kind, BodyRef::Kind::kCloth);
+  EXPECT_EQ(scene->world.body_ref(1).kind, BodyRef::Kind::kSolid);
+  EXPECT_EQ(scene->world.cloth(1), nullptr);
+  EXPECT_NE(scene->world.cloth(0), nullptr);
+}
+
+TEST(SolidReader, FineBoxSurfaceIsEmbedded) {
+  json doc = cube_scene();
+  doc["bodies"][0]["lattice"]["fine_divisions"] = 20;
+  const auto scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  const EmbeddedSurface* fine = scene->world.solids().bodies()[0].embedded_surface();
+  ASSERT_NE(fine, nullptr);
+  // Table 7.1: the fine cube has 2402 vertices and 4800 triangles
+  EXPECT_EQ(fine->vertex_count(), 2402u);
+  EXPECT_EQ(fine->triangles.size(), 4800u);
+}
+
+TEST(SolidReader, ModelsAndTheirParameters) {
+  json doc = cube_scene();
+  doc["bodies"][0]["model"] = "shape_matching";
+  doc["bodies"][0]["shape_matching"] = {
+      {"mode", "quadratic"},
+      {"beta", 0.3},
+      {"time_constant", 0.02},
+      {"clusters", true},
+      {"plasticity", {{"yield", 0.05}, {"creep", 2}, {"max", 0.5}}}};
+  auto scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  const ShapeMatchingMaterial& sm = scene->world.solids().bodies()[0].material().shape_matching;
+  EXPECT_EQ(scene->world.solids().bodies()[0].material().model, SolidModel::kShapeMatching);
+  EXPECT_EQ(sm.mode, ShapeMatchingMaterial::Mode::kQuadratic);
+  EXPECT_DOUBLE_EQ(sm.beta, 0.3);
+  EXPECT_TRUE(sm.clusters);
+  EXPECT_DOUBLE_EQ(sm.plastic_yield, 0.05);
+
+  doc["bodies"][0]["model"] = "corotated_fem";
+  doc["bodies"][0]["fem"] = {{"young_modulus", 5e4}, {"poisson_ratio", 0.45}};
+  scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  EXPECT_DOUBLE_EQ(scene->world.solids().bodies()[0].material().fem.young_modulus, 5e4);
+}
+
+TEST(SolidReader, NamesThePathOfTheBadValue) {
+  const std::pair<std::function<void(json&)>, std::string> cases[] = {
+      {[](json& b) {
+         b["lattice"]["cells"] = {5, 0, 5};
+       },
+       "bodies[0].lattice.cells[1]: must be"},
+      {[](json& b) {
+         b["lattice"]["size"] = {1, -1, 1};
+       },
+       "bodies[0].lattice.size: must be > 0"},
+      {[](json& b) { b["node_mass"] = 0; }, "bodies[0].node_mass: must be > 0"},
+      {[](json& b) { b["mass_spring"]["damping"] = -1; },
+       "bodies[0].mass_spring.damping: must be >= 0"},
+      {[](json& b) { b["model"] = "rubber"; }, "bodies[0].model: must be mass_spring"},
+      {[](json& b) {
+         b["fem"] = {{"poisson_ratio", 0.5}};
+       },
+       "bodies[0].fem.poisson_ratio: must be in [0, 0.5)"},
+      {[](json& b) { b["grid"] = json::object(); }, "bodies[0].grid: unknown key"},
+      {[](json& b) {
+         b["sphere"] = {{"radius", 1}};
+       },
+       "bodies[0].sphere: a solid takes one shape"},
+      {[](json& b) { b.erase("lattice"); }, "bodies[0]: a solid needs one of"},
+      {[](json& b) { b["pin"] = {216}; }, "bodies[0].pin[0]: must be a node index below 216"},
+      {[](json& b) {
+         b["mesh"] = {{"file", "meshes/bunny.obj"}}, b.erase("lattice");
+       },
+       "bodies[0].mesh.file: files can only be loaded"},
+  };
+  for (const auto& [edit, expected] : cases) {
+    json doc = cube_scene();
+    edit(doc["bodies"][0]);
+    EXPECT_NE(error_of(doc).find(expected), std::string::npos)
+        << "expected \"" << expected << "\", got \"" << error_of(doc) << "\"";
+  }
+}
+
+// A material whose stable step is thousands of times below the scene's step would stall the
+// physics thread in substeps: it is refused when the scene loads.
+TEST(SolidReader, RefusesAMaterialTooStiffForItsMass) {
+  json doc = cube_scene();
+  doc["time_step"] = 0.01;
+  doc["bodies"][0]["node_mass"] = 1e-9;
+  doc["bodies"][0]["mass_spring"]["distance_stiffness"] = 1e9;
+  EXPECT_NE(error_of(doc).find("bodies[0]: too stiff for its node mass"), std::string::npos)
+      << error_of(doc);
+}
+
+TEST(SolidReader, ParticleLimitCoversTheLattice) {
+  json doc = cube_scene();
+  doc["bodies"][0]["lattice"]["cells"] = {64, 64, 64};
+  SceneLoadOptions options;
+  options.max_particles = 10'000;
+  const auto scene = load_scene(doc, options);
+  ASSERT_FALSE(scene);
+  EXPECT_NE(scene.error().what().find("particle limit"), std::string::npos);
+}
+
+TEST(SolidReader, SolidSettings) {
+  json doc = cube_scene();
+  doc["solids"] = {{"max_step", 0.005}, {"contact_iterations", 4}};
+  const auto scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  EXPECT_DOUBLE_EQ(scene->world.solids().settings().max_step, 0.005);
+  EXPECT_EQ(scene->world.solids().settings().contact_iterations, 4);
+  doc["solids"]["max_step"] = 0.02;
+  EXPECT_NE(error_of(doc).find("solids.max_step: must be at most 0.015 s"), std::string::npos);
+}
+
+// Table 7.2 of the second thesis: three stacked 5×5×5 cubes, in JSON and in its own format.
+TEST(SolidReader, ThreeCubesSceneHasTheThesisCounts) {
+  SceneLoadOptions options;
+  options.asset_root = FELT_SCENE_DIR;
+  for (const char* file : {"/thesis/three_cubes.json", "/thesis/three_cubes.cfg"}) {
+    const auto scene = load_scene_file(std::string(FELT_SCENE_DIR) + file, options);
+    ASSERT_TRUE(scene) << file << ": " << scene.error().what();
+    std::size_t nodes = 0, edges = 0, triangles = 0, tets = 0;
+    for (const SolidBody& body : scene->world.solids().bodies()) {
+      nodes += body.node_count();
+      edges += body.topology().edges.size();
+      triangles += body.topology().surface.size();
+      tets += body.rest().tets.size();
+    }
+    EXPECT_EQ(nodes, 648u) << file;
+    EXPECT_EQ(edges, 2970u) << file;
+    EXPECT_EQ(triangles, 900u) << file;
+    EXPECT_EQ(tets, 1875u) << file;
+  }
+}
+
+}  // namespace
+}  // namespace felt
