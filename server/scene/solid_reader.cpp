@@ -213,6 +213,15 @@ SolidStepSettings read_solid_settings(const ObjectReader& solids) {
   s.contact_iterations =
       static_cast<int>(solids.count("contact_iterations", s.contact_iterations, 0, 16));
   s.min_depth = solids.non_negative("min_depth", s.min_depth);
+  s.max_speed = solids.positive("max_speed", s.max_speed);
+  const std::string friction = solids.string("friction", "coulomb");
+  if (friction == "coulomb") {
+    s.friction = SolidFriction::kRelativeCoulomb;
+  } else if (friction == "thesis") {
+    s.friction = SolidFriction::kThesis;
+  } else {
+    fail(solids.path_of("friction"), "must be coulomb or thesis");
+  }
   return s;
 }
 

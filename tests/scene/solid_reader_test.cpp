@@ -153,11 +153,12 @@ TEST(SolidReader, ParticleLimitCoversTheLattice) {
 
 TEST(SolidReader, SolidSettings) {
   json doc = cube_scene();
-  doc["solids"] = {{"max_step", 0.005}, {"contact_iterations", 4}};
+  doc["solids"] = {{"max_step", 0.005}, {"contact_iterations", 4}, {"friction", "thesis"}};
   const auto scene = load_scene(doc);
   ASSERT_TRUE(scene) << scene.error().what();
   EXPECT_DOUBLE_EQ(scene->world.solids().settings().max_step, 0.005);
   EXPECT_EQ(scene->world.solids().settings().contact_iterations, 4);
+  EXPECT_EQ(scene->world.solids().settings().friction, SolidFriction::kThesis);
   doc["solids"]["max_step"] = 0.02;
   EXPECT_NE(error_of(doc).find("solids.max_step: must be at most 0.015 s"), std::string::npos);
 }
