@@ -13,6 +13,7 @@ namespace {
 // Frames kept while the caller is busy with requests; older ones are dropped (latest wins,
 // as on the server).
 constexpr std::size_t kMaxBufferedFrames = 64;
+constexpr std::size_t kMaxBufferedEvents = 256;
 // Replies the server may send are bounded by its own limits; this only stops a broken peer.
 constexpr std::size_t kMaxInboundFrameBytes = 256u << 20;
 
@@ -116,15 +117,29 @@ v1::ServerMessage Client::request(v1::ClientMessage& message) {
         deadline - std::chrono::steady_clock::now());
     auto reply = receive(std::max(left, std::chrono::milliseconds(0)));
     if (!reply) throw ClientError(v1::ERROR_CODE_UNSPECIFIED, "no reply within the timeout");
-    if (reply->has_frame()) {
-      if (frames_.size() == kMaxBufferedFrames) frames_.pop_front();
-      frames_.push_back(std::move(*reply->mutable_frame()));
-      continue;
-    }
+    if (keep_streamed(*reply)) continue;
     if (reply->request_id() != id) continue;  // a late reply to an earlier, timed-out request
     if (reply->has_error()) throw ClientError(reply->error().code(), reply->error().message());
     return std::move(*reply);
   }
+}
+
+bool Client::keep_streamed(v1::ServerMessage& message) {
+  if (message.has_frame()) {
+    if (frames_.size() == kMaxBufferedFrames) frames_.pop_front();
+    frames_.push_back(std::move(*message.mutable_frame()));
+    return true;
+  }
+  if (message.has_event()) {
+    if (events_.size() == kMaxBufferedEvents) events_.erase(events_.begin());
+    events_.push_back(std::move(*message.mutable_event()));
+    return true;
+  }
+  return false;
+}
+
+std::vector<v1::SceneEvent> Client::take_events() {
+  return std::exchange(events_, {});
 }
 
 std::optional<v1::Frame> Client::next_frame(std::chrono::milliseconds timeout) {
@@ -135,7 +150,7 @@ std::optional<v1::Frame> Client::next_frame(std::chrono::milliseconds timeout) {
     if (left.count() <= 0) return std::nullopt;
     auto message = receive(left);
     if (!message) return std::nullopt;
-    if (message->has_frame()) frames_.push_back(std::move(*message->mutable_frame()));
+    keep_streamed(*message);
   }
   v1::Frame frame = std::move(frames_.front());
   frames_.pop_front();

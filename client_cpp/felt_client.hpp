@@ -53,6 +53,8 @@ class Client {
 
   /// The next frame, or nothing if none came within `timeout`.
   std::optional<felt::v1::Frame> next_frame(std::chrono::milliseconds timeout);
+  /// The scene events received so far (with replies and frames), oldest first; forgets them.
+  std::vector<felt::v1::SceneEvent> take_events();
 
   /// Sends `message` with a fresh request id and returns the reply with that id. An Error
   /// reply throws ClientError.
@@ -66,11 +68,15 @@ class Client {
   void set_reply_timeout(std::chrono::milliseconds timeout) { reply_timeout_ = timeout; }
 
  private:
+  /// Keeps a frame or an event that arrived unasked; false for anything else.
+  bool keep_streamed(felt::v1::ServerMessage& message);
+
   boost::asio::io_context io_;
   boost::asio::ip::tcp::socket socket_;
   wire::FrameDecoder decoder_;
   std::array<std::uint8_t, 64 * 1024> buffer_;
   std::deque<felt::v1::Frame> frames_;
+  std::vector<felt::v1::SceneEvent> events_;
   std::uint64_t next_request_id_ = 1;
   std::chrono::milliseconds reply_timeout_ = std::chrono::seconds(10);
 };

@@ -14,7 +14,8 @@ std::uint32_t World::add_body(ClothBody body) {
   self_collision_.emplace_back();
   energy_valid_ = false;
   refs_.push_back({BodyRef::Kind::kCloth, static_cast<std::uint32_t>(cloths_.size() - 1)});
-  return static_cast<std::uint32_t>(refs_.size() - 1);
+  cloth_ids_.push_back(static_cast<std::uint32_t>(refs_.size() - 1));
+  return cloth_ids_.back();
 }
 
 std::uint32_t World::add_body(SolidBody body) {
@@ -85,6 +86,7 @@ StepReport World::step() {
       body.integrator().reset();
       energy_[b] = body.elastic_energy();
       report.flags |= kStepUnrecoverable;
+      report.unrecoverable_bodies.push_back(cloth_ids_[b]);
     }
     report.max_substeps = std::max(report.max_substeps, substeps);
     body.clear_external_forces();
@@ -93,7 +95,13 @@ StepReport World::step() {
   if (!solids_.bodies().empty()) {
     const SolidStepStats& solid = solids_.step(settings_.time_step, settings_.gravity, colliders_);
     if (solid.rescued) report.flags |= kStepRescued;
-    if (solid.unrecoverable) report.flags |= kStepUnrecoverable;
+    if (solid.unrecoverable) {
+      // the solids step together, so all of them were rolled back
+      report.flags |= kStepUnrecoverable;
+      for (std::uint32_t id = 0; id < refs_.size(); ++id) {
+        if (refs_[id].kind == BodyRef::Kind::kSolid) report.unrecoverable_bodies.push_back(id);
+      }
+    }
     report.max_substeps = std::max(report.max_substeps, solid.substeps);
   }
   ++step_count_;

@@ -40,7 +40,8 @@ enum StepFlag : std::uint32_t {
 
 struct StepReport {
   std::uint32_t flags = kStepOk;
-  int max_substeps = 1;  ///< the most substeps any body needed
+  int max_substeps = 1;                             ///< the most substeps any body needed
+  std::vector<std::uint32_t> unrecoverable_bodies;  ///< ids; empty (no allocation) when none
 };
 
 class World {
@@ -95,6 +96,7 @@ class World {
 
   WorldSettings settings_;
   std::vector<ClothBody> cloths_;
+  std::vector<std::uint32_t> cloth_ids_;            ///< body id of each cloth
   std::vector<ClothSelfCollision> self_collision_;  ///< per cloth; keeps its hash between steps
   SolidSystem solids_;
   std::vector<BodyRef> refs_;

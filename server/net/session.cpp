@@ -145,6 +145,10 @@ void Session::join(SceneId id, std::shared_ptr<SceneRunner> scene) {
   scene_ = std::move(scene);
   topology_sent_.assign(scene_ ? scene_->bodies().size() : 0, false);
   last_frame_step_ = ~std::uint64_t{0};
+  // events from before the session joined are history it does not need
+  const auto snapshot = scene_ ? scene_->latest() : nullptr;
+  last_event_sequence_ =
+      snapshot && snapshot->events ? snapshot->events->back().sequence : std::uint64_t{0};
 }
 
 void Session::leave_scene() {
@@ -183,6 +187,24 @@ void Session::subscribe_frames(double rate_hz, bool normals) {
   }
 }
 
+void Session::send_new_events(const SceneSnapshot& snapshot) {
+  if (!snapshot.events) return;
+  for (const SceneEvent& event : *snapshot.events) {
+    if (event.sequence <= last_event_sequence_) continue;
+    v1::ServerMessage message;
+    v1::SceneEvent& out = *message.mutable_event();
+    out.set_scene_id(scene_id_);
+    out.set_sequence(event.sequence);
+    out.set_kind(v1::EVENT_KIND_UNRECOVERABLE_STEP);
+    out.set_step(event.step);
+    out.set_sim_time(event.sim_time);
+    out.set_count(event.unrecoverable_steps);
+    for (std::uint32_t body : event.bodies) out.add_body_ids(body);
+    send(message);
+    last_event_sequence_ = event.sequence;
+  }
+}
+
 void Session::schedule_frame() {
   frame_timer_.expires_after(frame_period_);
   frame_timer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
@@ -194,6 +216,7 @@ void Session::on_frame_tick() {
   if (closed_) return;
   if (scene_) {
     const auto snapshot = scene_->latest();
+    send_new_events(*snapshot);
     if (snapshot->step != last_frame_step_) {
       std::uint64_t skipped = 0;
       if (frame_pending_) {

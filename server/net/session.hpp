@@ -60,6 +60,8 @@ class Session : public std::enable_shared_from_this<Session> {
   void write_next();
   void schedule_frame();
   void on_frame_tick();
+  /// Sends the events of the scene the session has not sent yet.
+  void send_new_events(const SceneSnapshot& snapshot);
   void leave_scene();
   void shutdown();
   std::uint64_t key_of(std::uint32_t proxy_id) const;
@@ -90,7 +92,8 @@ class Session : public std::enable_shared_from_this<Session> {
   bool stream_normals_ = false;
   std::chrono::nanoseconds frame_period_{0};
   std::uint64_t last_frame_step_ = ~std::uint64_t{0};
-  std::vector<bool> topology_sent_;  ///< per body: has this subscription had its triangles
+  std::uint64_t last_event_sequence_ = 0;  ///< of the scene's events, the last one sent
+  std::vector<bool> topology_sent_;        ///< per body: has this subscription had its triangles
   std::vector<std::uint32_t> pending_topology_;  ///< bodies whose triangles the pending frame has
 };
 

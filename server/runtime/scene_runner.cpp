@@ -12,6 +12,9 @@ using Seconds = std::chrono::duration<double>;
 // Lagging further than this behind the wall clock re-synchronises instead of catching up, so a
 // slow scene runs slower than real time rather than stepping in bursts.
 constexpr double kMaxLagSeconds = 0.1;
+// unrecoverable steps are reported at most this often, and this many events are kept
+constexpr double kEventIntervalSeconds = 0.5;
+constexpr std::size_t kKeptEvents = 16;
 // real-time factor and step time are averaged over windows this long
 constexpr double kStatsWindowSeconds = 0.5;
 
@@ -66,7 +69,19 @@ RunnerStats SceneRunner::stats() const {
 }
 
 void SceneRunner::publish() {
-  latest_.store(make_snapshot(scene_.world, latest_.load().get()));
+  auto snapshot = make_snapshot(scene_.world, latest_.load().get());
+  snapshot->events = events_;
+  latest_.store(std::move(snapshot));
+}
+
+void SceneRunner::record_event(std::uint64_t unrecoverable_steps,
+                               std::vector<std::uint32_t> bodies) {
+  std::vector<SceneEvent> events = events_ ? *events_ : std::vector<SceneEvent>{};
+  const std::uint64_t sequence = events.empty() ? 1 : events.back().sequence + 1;
+  events.push_back({sequence, scene_.world.step_count(), scene_.world.time(), unrecoverable_steps,
+                    std::move(bodies)});
+  if (events.size() > kKeptEvents) events.erase(events.begin());
+  events_ = std::make_shared<const std::vector<SceneEvent>>(std::move(events));
 }
 
 void SceneRunner::run(std::stop_token stop) {
@@ -79,6 +94,10 @@ void SceneRunner::run(std::stop_token stop) {
   double window_sim_start = world.time();
   double window_step_seconds = 0;
   std::uint64_t window_steps = 0;
+  // unrecoverable steps not reported yet, and the bodies of the last one
+  std::uint64_t unreported = 0;
+  std::vector<std::uint32_t> failed_bodies;
+  Clock::time_point last_event = Clock::now() - std::chrono::hours(1);
 
   while (!stop.stop_requested()) {
     const Clock::time_point now = Clock::now();
@@ -95,11 +114,21 @@ void SceneRunner::run(std::stop_token stop) {
       reactions_.apply_and_clear(world);
       const StepReport report = world.step();
       rescued += (report.flags & kStepRescued) ? 1 : 0;
-      unrecoverable += (report.flags & kStepUnrecoverable) ? 1 : 0;
+      if (report.flags & kStepUnrecoverable) {
+        ++unrecoverable;
+        failed_bodies = report.unrecoverable_bodies;
+      }
       window_step_seconds += Seconds(Clock::now() - step_start).count();
       ++window_steps;
       lag -= h;
       stepped = true;
+    }
+    unreported += unrecoverable;
+    if (unreported > 0 && Seconds(Clock::now() - last_event).count() >= kEventIntervalSeconds) {
+      record_event(unreported, std::move(failed_bodies));
+      unreported = 0;
+      failed_bodies.clear();
+      last_event = Clock::now();
     }
     if (stepped) publish();
 

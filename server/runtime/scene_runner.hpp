@@ -71,6 +71,8 @@ class SceneRunner {
  private:
   void run(std::stop_token stop);
   void publish();
+  /// Records that `unrecoverable_steps` steps failed, the last of them in `bodies`.
+  void record_event(std::uint64_t unrecoverable_steps, std::vector<std::uint32_t> bodies);
 
   Scene scene_;  ///< written by the physics thread only, once started
   std::string name_;
@@ -79,6 +81,8 @@ class SceneRunner {
   CommandQueue commands_;
   ReactionAccumulator reactions_;
   std::atomic<std::shared_ptr<const SceneSnapshot>> latest_;
+  /// the latest events, written by the physics thread, shared by the snapshots it publishes
+  std::shared_ptr<const std::vector<SceneEvent>> events_;
 
   std::atomic<std::uint64_t> haptic_updates_{0};
   mutable std::mutex stats_mutex_;

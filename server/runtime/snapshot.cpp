@@ -22,8 +22,7 @@ SharedTriangles solid_surface(const SolidBody& body, const SharedTriangles& prev
 
 }  // namespace
 
-std::shared_ptr<const SceneSnapshot> make_snapshot(const World& world,
-                                                   const SceneSnapshot* previous) {
+std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnapshot* previous) {
   auto snapshot = std::make_shared<SceneSnapshot>();
   snapshot->step = world.step_count();
   snapshot->sim_time = world.time();

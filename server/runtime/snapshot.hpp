@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/world.hpp"
+#include "runtime/scene_event.hpp"
 
 namespace felt {
 
@@ -27,11 +28,14 @@ struct SceneSnapshot {
   std::uint64_t step = 0;
   Real sim_time = 0;
   std::vector<BodySnapshot> bodies;
+  /// the scene's latest events, oldest first (null when there were none); sequence numbers
+  /// tell a reader which it has not seen
+  std::shared_ptr<const std::vector<SceneEvent>> events;
 };
 
 /// Copies what clients see of `world` now, sharing the surfaces of `previous` (the last
 /// snapshot of the same world, or null).
-std::shared_ptr<const SceneSnapshot> make_snapshot(const World& world,
-                                                   const SceneSnapshot* previous = nullptr);
+std::shared_ptr<SceneSnapshot> make_snapshot(const World& world,
+                                             const SceneSnapshot* previous = nullptr);
 
 }  // namespace felt

@@ -190,6 +190,29 @@ TEST_F(FeltdTest, SoftSolidsStreamTheirFineSurfaceAndCanBeTouched) {
   expect_error([&] { client.pin_particles(0, {1}, {}); }, v1::ERROR_CODE_BAD_REQUEST);
 }
 
+TEST_F(FeltdTest, UnrecoverableStepsReachSubscribersAsEvents) {
+  Client client;
+  connect(client);
+  client.hello("test");
+  // explicit Euler cannot integrate springs this stiff at any substep
+  const v1::SceneLoaded loaded = client.load_scene_json(R"({
+    "bodies": [{ "type": "cloth", "grid": { "nx": 6, "ny": 6 }, "integrator": "explicit_euler",
+                 "springs": { "structural": { "stiffness": 1e8 } } }] })");
+  client.subscribe_frames(30);
+  std::vector<v1::SceneEvent> events;
+  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  while (events.empty() && std::chrono::steady_clock::now() < deadline) {
+    ASSERT_TRUE(client.next_frame(5s));
+    events = client.take_events();
+  }
+  ASSERT_FALSE(events.empty());
+  EXPECT_EQ(events[0].kind(), v1::EVENT_KIND_UNRECOVERABLE_STEP);
+  EXPECT_EQ(events[0].scene_id(), loaded.scene_id());
+  EXPECT_GE(events[0].count(), 1u);
+  ASSERT_EQ(events[0].body_ids_size(), 1);
+  EXPECT_EQ(events[0].body_ids(0), 0u);
+}
+
 TEST_F(FeltdTest, BadRequestsGetErrorsAndTheConnectionStaysUsable) {
   Client client;
   connect(client);

@@ -136,5 +136,35 @@ TEST(SceneRunner, StopsPromptly) {
   EXPECT_LT(std::chrono::steady_clock::now() - start, 1s);
 }
 
+// A cloth whose springs explicit Euler cannot integrate at any substep: its unrecoverable
+// steps reach clients as events, coalesced rather than one per step.
+TEST(SceneRunner, UnrecoverableStepsBecomeCoalescedEvents) {
+  Scene scene = flat_cloth_scene(Vec3(0, -9.81, 0));
+  ClothBody& cloth = scene.world.cloths()[0];
+  ClothParams params = cloth.params();
+  params.spring(SpringKind::kStructural).stiffness = 1e8;
+  cloth.set_params(params);
+  cloth.set_integrator(make_integrator("explicit_euler"));
+  SceneRunner runner(std::move(scene));
+  runner.start();
+  ASSERT_TRUE(wait_for([&] {
+    const auto events = runner.latest()->events;
+    return events && events->size() >= 2;
+  }));
+  runner.stop();
+  const auto snapshot = runner.latest();
+  const std::vector<SceneEvent>& events = *snapshot->events;
+  EXPECT_EQ(events[0].sequence, 1u);
+  EXPECT_EQ(events[1].sequence, 2u);
+  EXPECT_EQ(events[0].bodies, std::vector<std::uint32_t>{0});
+  // every step fails, so the second event covers the ~0.5 s of steps since the first
+  EXPECT_GT(events[1].unrecoverable_steps, 100u);
+  EXPECT_GE(events[1].sim_time - events[0].sim_time, 0.4);
+  EXPECT_LE(events.size(), 16u);
+  // the events count every failed step they report, and no step twice
+  EXPECT_GE(runner.stats().unrecoverable_steps,
+            events[0].unrecoverable_steps + events[1].unrecoverable_steps);
+}
+
 }  // namespace
 }  // namespace felt
