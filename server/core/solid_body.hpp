@@ -34,7 +34,7 @@ struct ShapeMatchingMaterial {
   Real beta = 0.5;  ///< how far the linear or quadratic fit replaces the rotation, 0..1
   /// τ, s: each node is pulled to its goal by a spring m/τ², critically damped relative to the
   /// cluster's rigid motion, so a deformation dies out within a few τ whatever the step size
-  /// (shape_matching.hpp says why not α = h/τ).
+  /// (shape_matching.hpp says why not α = h/τ, and where a steady load still depends on it).
   Real time_constant = 0.01;
   bool clusters = false;  ///< one cluster per lattice cell (five tetrahedra) instead of one
   /// Opt-in plasticity (O'Brien et al. 2002 strain split applied to the fit): deformation
