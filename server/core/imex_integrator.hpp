@@ -8,13 +8,9 @@
 // pins, or the spring constants change. First order; on a linear spring it is backward Euler.
 
 #include <cstdint>
-#include <span>
-#include <vector>
-
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 
 #include "core/integrator.hpp"
+#include "core/linear_pair_step.hpp"
 
 namespace felt {
 
@@ -24,30 +20,13 @@ class ImexIntegrator final : public Integrator {
   void step(const DynamicSystem& system, ParticleState& state, Real t, Real h) override;
 
   /// How many times the matrix was factorized so far.
-  std::int64_t factorizations() const { return factorizations_; }
+  std::int64_t factorizations() const { return linear_step_.factorizations(); }
 
  private:
-  using SparseMatrix = Eigen::SparseMatrix<Real>;
-  using Columns = Eigen::Matrix<Real, Eigen::Dynamic, 3>;  ///< x, y, z components as columns
-
-  /// True when the factorization was made for these masses, pairs and h.
-  bool factorization_matches(std::span<const Real> inv_mass, Real h) const;
-  void factorize(std::span<const Real> inv_mass, Real h);
-
-  std::vector<LinearPair> pairs_;
-  // what the factorization was made for
-  std::vector<LinearPair> factored_pairs_;
-  std::vector<Real> factored_inv_mass_;
-  Real factored_h_ = 0;
-  bool factored_ = false;
-
-  std::vector<Eigen::Triplet<Real>> triplets_;
-  SparseMatrix matrix_;
-  Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
-  std::int64_t factorizations_ = 0;
-
-  std::vector<Vec3> force_;
-  Columns rhs_, permuted_, dv_;
+  // Eq. 4.25 minus A v(t), with f_a = f − H x − D v, is LinearPairStep's A Δv = h (f + h H v):
+  // the same solution, but f_a and h H x, each of size k_s |l|, no longer cancel in b
+  LinearPairStep linear_step_{true};
+  LinearPairStep::Columns dv_;
 };
 
 }  // namespace felt

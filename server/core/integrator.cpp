@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include "core/approximate_implicit_integrators.hpp"
 #include "core/explicit_integrators.hpp"
 #include "core/imex_integrator.hpp"
 #include "core/implicit_euler.hpp"
@@ -32,6 +33,8 @@ constexpr std::array kIntegrators{
     Entry{"leapfrog", &make_one<Leapfrog>},
     Entry{"implicit_euler", &make_one<ImplicitEuler>},
     Entry{"imex", &make_one<ImexIntegrator>},
+    Entry{"desbrun", &make_one<DesbrunIntegrator>},
+    Entry{"kang", &make_one<KangIntegrator>},
 };
 
 }  // namespace
