@@ -65,7 +65,7 @@ void ContactSurface::resolve(std::span<SolidBody> bodies,
   for (int k = 0; k < iterations; ++k) {
     step /= 2;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
-      if (involved_[b]) bodies[b].internal_forces(force_[b]);
+      if (involved_[b]) bodies[b].internal_forces(force_[b], in_region_[b]);
     }
     compare_pressures(bodies, contacts, step);
     move_region(bodies);
@@ -84,8 +84,12 @@ void ContactSurface::build_region(std::span<SolidBody> bodies,
   entries_.clear();
   sources_.clear();
   region_of_.resize(bodies.size());
+  in_region_.resize(bodies.size());
   involved_.assign(bodies.size(), 0);
-  for (std::size_t b = 0; b < bodies.size(); ++b) region_of_[b].assign(bodies[b].node_count(), -1);
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    region_of_[b].assign(bodies[b].node_count(), -1);
+    in_region_[b].assign(bodies[b].node_count(), 0);
+  }
 
   for (std::size_t c = 0; c < contacts.size(); ++c) {
     const PenetrationContact& contact = contacts[c];
@@ -138,6 +142,7 @@ std::uint32_t ContactSurface::entry_for(std::span<SolidBody> bodies, std::uint32
     added.node = node;
     added.start = bodies[body].positions()[node];
     region_.push_back(added);
+    in_region_[body][node] = 1;
     involved_[body] = 1;
   }
   for (std::int32_t e = region_[region_node].first_entry; e >= 0; e = entries_[e].next) {
@@ -303,7 +308,7 @@ void ContactSurface::relative_coulomb_friction(std::span<SolidBody> bodies,
 void ContactSurface::own_velocity_friction(std::span<SolidBody> bodies, Real h,
                                            const Vec3& gravity) {
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    if (involved_[b]) bodies[b].internal_forces(force_[b]);
+    if (involved_[b]) bodies[b].internal_forces(force_[b], in_region_[b]);
   }
   for (const RegionNode& node : region_) {
     SolidBody& body = bodies[node.body];

@@ -37,7 +37,7 @@ inline Real mixed_friction(Real a, Real b) {
 ///   contact triangles contain it, by max(1, Σ w_j): the thesis's zero d_i with weight 1 would
 ///   move a triangle that a node hits at a corner by half the depth only, and max(1, ·) keeps
 ///   s_i continuous as a hit leaves the triangles around the node.
-/// - Pressures are the internal forces (re-evaluated for the whole body every iteration)
+/// - Pressures are the internal forces (re-evaluated every iteration, at the region nodes)
 ///   divided by the area of the surface triangles around each node, at the start of the
 ///   resolution; interior nodes take the mean of their body's surface nodes. p_i^B averages
 ///   the pressures of the nodes j ∈ J_i ∩ B by w_j; when J_i ∩ B is empty it interpolates the
@@ -129,6 +129,8 @@ class ContactSurface {
   std::vector<Real> normal_motion_;  ///< per contact: the approach its impulse stopped
   /// per body: the region node of each of its nodes, or -1
   std::vector<std::vector<std::int32_t>> region_of_;
+  /// per body: which of its nodes are region nodes, the only forces the pressures need
+  std::vector<std::vector<std::uint8_t>> in_region_;
   std::vector<std::uint8_t> involved_;    ///< per body: has region nodes
   std::vector<std::vector<Real>> area_;   ///< per body and node: area of O_i
   std::vector<std::vector<Vec3>> force_;  ///< per body and node: internal force

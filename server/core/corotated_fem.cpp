@@ -1,9 +1,9 @@
 #include "core/corotated_fem.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include "core/check.hpp"
+#include "core/largest_eigenvalue.hpp"
 #include "core/polar_decomposition.hpp"
 
 namespace felt {
@@ -17,9 +17,7 @@ Mat3 linear_stress(const Mat3& strain, Real mu, Real lambda) {
 }  // namespace
 
 CorotatedFem::CorotatedFem(const TetMesh& rest, const FemMaterial& material)
-    : damping_(material.damping),
-      stiffness_bound_(rest.nodes.size(), 0),
-      damping_bound_(rest.nodes.size(), 0) {
+    : damping_(material.damping), node_count_(rest.nodes.size()) {
   const Real e = material.young_modulus;
   const Real nu = material.poisson_ratio;
   FELT_CHECK(e > 0 && nu > -1 && nu < 0.5 && material.damping >= 0);
@@ -27,6 +25,7 @@ CorotatedFem::CorotatedFem(const TetMesh& rest, const FemMaterial& material)
   lambda_ = e * nu / ((1 + nu) * (1 - 2 * nu));
 
   elements_.reserve(rest.tets.size());
+  std::vector<Eigen::Triplet<Real>> stiffness;
   for (const Tetrahedron& t : rest.tets) {
     const std::span<const Vec3> x = rest.nodes;
     Mat3 shape;
@@ -45,13 +44,11 @@ CorotatedFem::CorotatedFem(const TetMesh& rest, const FemMaterial& material)
         const Mat3 block =
             volume * (mu_ * g[a].dot(g[b]) * Mat3::Identity() + mu_ * g[b] * g[a].transpose() +
                       lambda_ * g[a] * g[b].transpose());
-        stiffness_bound_[t[a]] += block.operatorNorm();
+        add_block(stiffness, t[a], t[b], block);
       }
     }
   }
-  for (std::size_t n = 0; n < stiffness_bound_.size(); ++n) {
-    damping_bound_[n] = damping_ * stiffness_bound_[n];
-  }
+  largest_stiffness_ = largest_eigenvalue(block_matrix(node_count_, stiffness));
 }
 
 Mat3 CorotatedFem::deformation_gradient(const Element& e, std::span<const Vec3> x) {
@@ -61,10 +58,12 @@ Mat3 CorotatedFem::deformation_gradient(const Element& e, std::span<const Vec3> 
   return shape * e.rest_inverse;
 }
 
-void CorotatedFem::add_forces(std::span<const Vec3> x, std::span<const Vec3> v,
-                              std::span<Vec3> f) const {
-  FELT_CHECK(x.size() == stiffness_bound_.size() && v.size() == x.size() && f.size() == x.size());
+void CorotatedFem::add_forces(std::span<const Vec3> x, std::span<const Vec3> v, std::span<Vec3> f,
+                              NodeMask mask) const {
+  FELT_CHECK(x.size() == node_count_ && v.size() == x.size() && f.size() == x.size());
+  FELT_CHECK(mask.empty() || mask.size() == x.size());
   for (const Element& e : elements_) {
+    if (!acts_on_selected(mask, e.nodes)) continue;
     const Mat3 deformation = deformation_gradient(e, x);
     const PolarDecomposition polar = polar_decomposition(deformation);
     Mat3 piola = polar.rotation * linear_stress(polar.stretch - Mat3::Identity(), mu_, lambda_);
@@ -83,7 +82,7 @@ void CorotatedFem::add_forces(std::span<const Vec3> x, std::span<const Vec3> v,
 }
 
 Real CorotatedFem::energy(std::span<const Vec3> x) const {
-  FELT_CHECK(x.size() == stiffness_bound_.size());
+  FELT_CHECK(x.size() == node_count_);
   Real energy = 0;
   for (const Element& e : elements_) {
     const Mat3 strain = polar_decomposition(deformation_gradient(e, x)).stretch - Mat3::Identity();

@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "core/node_mask.hpp"
 #include "core/solid_body.hpp"
 #include "core/tet_mesh.hpp"
 
@@ -22,15 +23,17 @@ class CorotatedFem {
   /// Piola–Kirchhoff stress P = R σ(S − I), which is the same thing without the 12×12 matrix.
   /// The damping stress is β σ(sym(Fᵀ Ḟ)) (P = F σ): β K v at rest, zero for any rigid motion,
   /// and without net force or torque, so it conserves momentum like the elastic part.
-  void add_forces(std::span<const Vec3> x, std::span<const Vec3> v, std::span<Vec3> f) const;
+  /// With a mask, only the elements acting on a selected node are visited: f is then right (bit
+  /// for bit) at the selected nodes only.
+  void add_forces(std::span<const Vec3> x, std::span<const Vec3> v, std::span<Vec3> f,
+                  NodeMask mask = {}) const;
   /// Σ V₀ (μ ‖S − I‖² + λ/2 tr(S − I)²), whose negative gradient the elastic forces are.
   Real energy(std::span<const Vec3> x) const;
 
-  /// Per node n: Σ_m ‖K_nm‖₂ over the 3×3 blocks of the rest stiffness matrix (block
-  /// Gershgorin), for the explicit step limit.
-  std::span<const Real> stiffness_bound() const { return stiffness_bound_; }
-  /// The same for the damping matrix β K.
-  std::span<const Real> damping_bound() const { return damping_bound_; }
+  /// λ_max of the linear stiffness matrix K at rest, N/m, for the explicit step limit.
+  Real largest_stiffness_eigenvalue() const { return largest_stiffness_; }
+  /// λ_max of the damping matrix β K, N·s/m.
+  Real largest_damping_eigenvalue() const { return damping_ * largest_stiffness_; }
 
   Real lame_mu() const { return mu_; }
   Real lame_lambda() const { return lambda_; }
@@ -47,7 +50,8 @@ class CorotatedFem {
 
   Real mu_, lambda_, damping_;
   std::vector<Element> elements_;
-  std::vector<Real> stiffness_bound_, damping_bound_;
+  std::size_t node_count_;
+  Real largest_stiffness_ = 0;
 };
 
 }  // namespace felt

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "core/check.hpp"
+#include "core/largest_eigenvalue.hpp"
 
 namespace felt {
 namespace {
@@ -35,27 +36,28 @@ Real triangle_area(std::span<const Vec3> x, const Triangle& t) {
   return 0.5 * (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).norm();
 }
 
-/// Adds the Gershgorin row sums of the rank-one matrix k ∇C ∇Cᵀ, whose blocks have the norms
-/// k |∇_a C| |∇_b C|.
+/// Adds the blocks k ∇_a C ∇_b Cᵀ of the rank-one matrix k ∇C ∇Cᵀ: an element's stiffness (or
+/// damping) at rest, where C = 0 leaves only this term of the Hessian of ½ k C².
 template <std::size_t N>
-void add_rank_one_bound(const std::array<Vec3, N>& gradient,
-                        const std::array<std::uint32_t, N>& nodes, Real k,
-                        std::vector<Real>& bound) {
-  Real sum = 0;
-  for (const Vec3& g : gradient) sum += g.norm();
-  for (std::size_t a = 0; a < N; ++a) bound[nodes[a]] += k * gradient[a].norm() * sum;
+void add_rank_one_blocks(const std::array<Vec3, N>& gradient,
+                         const std::array<std::uint32_t, N>& nodes, Real k,
+                         std::vector<Eigen::Triplet<Real>>& triplets) {
+  for (std::size_t a = 0; a < N; ++a) {
+    for (std::size_t b = 0; b < N; ++b) {
+      add_block(triplets, nodes[a], nodes[b], k * gradient[a] * gradient[b].transpose());
+    }
+  }
 }
 
 }  // namespace
 
 GeneralizedMassSpring::GeneralizedMassSpring(const TetMesh& rest, const TetTopology& topology,
                                              const MassSpringMaterial& material)
-    : material_(material),
-      stiffness_bound_(rest.nodes.size(), 0),
-      damping_bound_(rest.nodes.size(), 0) {
+    : material_(material), node_count_(rest.nodes.size()) {
   FELT_CHECK(material.distance_stiffness >= 0 && material.volume_stiffness >= 0 &&
              material.damping >= 0 && material.area_stiffness >= 0);
   const std::span<const Vec3> x = rest.nodes;
+  std::vector<Eigen::Triplet<Real>> stiffness, damping;
 
   springs_.reserve(topology.edges.size());
   for (const Edge& e : topology.edges) {
@@ -64,8 +66,8 @@ GeneralizedMassSpring::GeneralizedMassSpring(const TetMesh& rest, const TetTopol
     springs_.push_back({e, length});
     const Vec3 unit = (x[e[1]] - x[e[0]]) / (length * length);  // |∂C/∂x| = 1/l₀
     const std::array<Vec3, 2> gradient = {-unit, unit};
-    add_rank_one_bound(gradient, e, material.distance_stiffness, stiffness_bound_);
-    add_rank_one_bound(gradient, e, material.damping, damping_bound_);
+    add_rank_one_blocks(gradient, e, material.distance_stiffness, stiffness);
+    add_rank_one_blocks(gradient, e, material.damping, damping);
   }
 
   volumes_.reserve(rest.tets.size());
@@ -74,8 +76,8 @@ GeneralizedMassSpring::GeneralizedMassSpring(const TetMesh& rest, const TetTopol
     FELT_CHECK(volume > 0);
     volumes_.push_back({t, volume});
     // energy 3 k_V V₀ C² with ∇C = ∇(6V)/(6V₀): K = k_V ∇(6V) ∇(6V)ᵀ / (6V₀)
-    add_rank_one_bound(six_volume_gradient(x, t), t, material.volume_stiffness / (6 * volume),
-                       stiffness_bound_);
+    add_rank_one_blocks(six_volume_gradient(x, t), t, material.volume_stiffness / (6 * volume),
+                        stiffness);
   }
 
   if (material.area_stiffness > 0) {
@@ -84,18 +86,22 @@ GeneralizedMassSpring::GeneralizedMassSpring(const TetMesh& rest, const TetTopol
       const Real area = triangle_area(x, t);
       FELT_CHECK(area > 0);
       areas_.push_back({t, area});
-      add_rank_one_bound(area_gradient(x, t), t, material.area_stiffness / (area * area),
-                         stiffness_bound_);
+      add_rank_one_blocks(area_gradient(x, t), t, material.area_stiffness / (area * area),
+                          stiffness);
     }
   }
+  largest_stiffness_ = largest_eigenvalue(block_matrix(node_count_, stiffness));
+  largest_damping_ = largest_eigenvalue(block_matrix(node_count_, damping));
 }
 
 void GeneralizedMassSpring::add_forces(std::span<const Vec3> x, std::span<const Vec3> v,
-                                       std::span<Vec3> f) const {
-  FELT_CHECK(x.size() == stiffness_bound_.size() && v.size() == x.size() && f.size() == x.size());
+                                       std::span<Vec3> f, NodeMask mask) const {
+  FELT_CHECK(x.size() == node_count_ && v.size() == x.size() && f.size() == x.size());
+  FELT_CHECK(mask.empty() || mask.size() == x.size());
   const Real k_d = material_.distance_stiffness;
   const Real d_c = material_.damping;
   for (const Spring& s : springs_) {
+    if (!acts_on_selected(mask, s.nodes)) continue;
     const auto [i, j] = s.nodes;
     const Vec3 xij = x[j] - x[i];
     const Real length = xij.norm();
@@ -111,13 +117,17 @@ void GeneralizedMassSpring::add_forces(std::span<const Vec3> x, std::span<const 
 
   const Real k_v = material_.volume_stiffness;
   for (const Volume& vol : volumes_) {
+    if (!acts_on_selected(mask, vol.nodes)) continue;
     const std::array<Vec3, 4> grad = six_volume_gradient(x, vol.nodes);
-    const Real c = (signed_volume(x, vol.nodes) - vol.rest_volume) / vol.rest_volume;
+    // 6V = x_ij·(x_ik × x_il) = x_ij·∂(6V)/∂x_j: signed_volume's arithmetic, without redoing it
+    const Real volume = (x[vol.nodes[1]] - x[vol.nodes[0]]).dot(grad[1]) / 6;
+    const Real c = (volume - vol.rest_volume) / vol.rest_volume;
     for (int m = 0; m < 4; ++m) f[vol.nodes[m]] -= k_v * c * grad[m];  // (6.2) as printed
   }
 
   const Real k_a = material_.area_stiffness;
   for (const Area& a : areas_) {
+    if (!acts_on_selected(mask, a.nodes)) continue;
     const std::array<Vec3, 3> grad = area_gradient(x, a.nodes);
     const Real c = (triangle_area(x, a.nodes) - a.rest_area) / a.rest_area;
     for (int m = 0; m < 3; ++m) f[a.nodes[m]] -= k_a * c / a.rest_area * grad[m];
@@ -125,7 +135,7 @@ void GeneralizedMassSpring::add_forces(std::span<const Vec3> x, std::span<const 
 }
 
 Real GeneralizedMassSpring::energy(std::span<const Vec3> x) const {
-  FELT_CHECK(x.size() == stiffness_bound_.size());
+  FELT_CHECK(x.size() == node_count_);
   Real e = 0;
   for (const Spring& s : springs_) {
     const Real c = ((x[s.nodes[1]] - x[s.nodes[0]]).norm() - s.rest_length) / s.rest_length;

@@ -15,6 +15,7 @@
 #include <span>
 #include <vector>
 
+#include "core/node_mask.hpp"
 #include "core/solid_body.hpp"
 #include "core/tet_mesh.hpp"
 
@@ -27,16 +28,17 @@ class GeneralizedMassSpring {
                         const MassSpringMaterial& material);
 
   /// Adds the constraint forces at positions x and velocities v to f. They sum to zero and have
-  /// no net torque.
-  void add_forces(std::span<const Vec3> x, std::span<const Vec3> v, std::span<Vec3> f) const;
+  /// no net torque. With a mask, only the elements acting on a selected node are visited: f is
+  /// then right (bit for bit) at the selected nodes only.
+  void add_forces(std::span<const Vec3> x, std::span<const Vec3> v, std::span<Vec3> f,
+                  NodeMask mask = {}) const;
   /// The potential of all constraints at positions x.
   Real energy(std::span<const Vec3> x) const;
 
-  /// Per node n: Σ_m ‖K_nm‖₂ over the 3×3 blocks of the stiffness matrix at rest, a block
-  /// Gershgorin bound on its row for the explicit step limit.
-  std::span<const Real> stiffness_bound() const { return stiffness_bound_; }
-  /// The same for the damping matrix.
-  std::span<const Real> damping_bound() const { return damping_bound_; }
+  /// λ_max of the stiffness matrix K = −∂f/∂x at rest, N/m, for the explicit step limit.
+  Real largest_stiffness_eigenvalue() const { return largest_stiffness_; }
+  /// λ_max of the damping matrix D = −∂f/∂v, N·s/m.
+  Real largest_damping_eigenvalue() const { return largest_damping_; }
 
  private:
   struct Spring {
@@ -56,7 +58,8 @@ class GeneralizedMassSpring {
   std::vector<Spring> springs_;
   std::vector<Volume> volumes_;
   std::vector<Area> areas_;
-  std::vector<Real> stiffness_bound_, damping_bound_;
+  std::size_t node_count_;
+  Real largest_stiffness_ = 0, largest_damping_ = 0;
 };
 
 }  // namespace felt

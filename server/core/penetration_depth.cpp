@@ -23,6 +23,13 @@ constexpr Real kEdgeSlack = 1e-12;
 // nearly, rounding alone decides where it "crosses".
 constexpr Real kParallelSine = 1e-10;
 
+// Margin, relative to the segment's length plus the largest triangle's, by which boxes are
+// grown before a segment's box rules a triangle out: far more than the rounding of a hit that
+// the slack and the parallel test let through (for a well-shaped triangle about 1e-5 of those
+// lengths at the smallest sine the parallel test allows), so the box test does not reject a
+// triangle the exact test would accept.
+constexpr Real kBoxMargin = 1e-3;
+
 struct RayTriangleHit {
   Real t = 0;
   Vec3 barycentric = Vec3::Zero();
@@ -36,10 +43,10 @@ std::optional<RayTriangleHit> intersect_triangle(const Vec3& origin, const Vec3&
   const Vec3 ab = b - a;
   const Vec3 ac = c - a;
   const Vec3 p = direction.cross(ac);
-  // det = −direction·(ab × ac): |direction| |ab × ac| times the sine to the plane
   const Real det = ab.dot(p);
-  const Real parallel = kParallelSine * direction.norm() * ab.cross(ac).norm();
-  if (!(std::abs(det) > parallel)) return std::nullopt;  // parallel, or a triangle without area
+  // a zero det makes u infinite or NaN, which fails its test; the near-parallel test, with its
+  // two square roots, waits until everything else says "hit" (most triangles a contact scans
+  // are missed)
   const Real inverse = 1 / det;
   const Vec3 s = origin - a;
   const Real u = s.dot(p) * inverse;
@@ -49,7 +56,19 @@ std::optional<RayTriangleHit> intersect_triangle(const Vec3& origin, const Vec3&
   if (!(v >= -kEdgeSlack && u + v <= 1 + kEdgeSlack)) return std::nullopt;
   const Real t = ac.dot(q) * inverse;
   if (!(t >= 0 && t <= t_max)) return std::nullopt;
+  // det = −direction·(ab × ac): |direction| |ab × ac| times the sine to the plane
+  const Real parallel = kParallelSine * direction.norm() * ab.cross(ac).norm();
+  if (!(std::abs(det) > parallel)) return std::nullopt;  // parallel, or a triangle without area
   return RayTriangleHit{t, Vec3(1 - u - v, u, v)};
+}
+
+/// Whether the boxes [lo_a, hi_a] and [lo_b, hi_b], each grown by `margin`, overlap.
+bool boxes_overlap(const Vec3& lo_a, const Vec3& hi_a, const Vec3& lo_b, const Vec3& hi_b,
+                   Real margin) {
+  for (int k = 0; k < 3; ++k) {
+    if (lo_a[k] - margin > hi_b[k] + margin || lo_b[k] - margin > hi_a[k] + margin) return false;
+  }
+  return true;
 }
 
 /// w_i(x) = 1 / |x − x_i|² (6.4), its distance floored.
@@ -84,8 +103,17 @@ PenetrationDepthEstimator::SurfaceHit PenetrationDepthEstimator::cast(
       return SurfaceHit{cache.triangle, cached->t, cached->barycentric};
     }
   }
+  // the colliding triangles in order, those whose box the segment's box misses skipped: most
+  // of them, and the nearest hit and its ties are the same as with all of them
+  const Vec3 end = x + t_max * direction;
+  const Vec3 lo = x.cwiseMin(end), hi = x.cwiseMax(end);
+  const TriangleBoxes& boxes = triangle_boxes_[penetrated];
+  const Real margin = kBoxMargin * ((hi - lo).norm() + boxes.largest);
+  const std::vector<std::uint32_t>& candidates = collisions.triangles[penetrated];
   SurfaceHit nearest;
-  for (std::uint32_t s : collisions.triangles[penetrated]) {
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    if (!boxes_overlap(lo, hi, boxes.lo[c], boxes.hi[c], margin)) continue;
+    const std::uint32_t s = candidates[c];
     const bool excluded = std::ranges::any_of(surface[s], [&](std::uint32_t corner) {
       return std::ranges::find(exclude, corner) != exclude.end();
     });
@@ -147,6 +175,22 @@ void PenetrationDepthEstimator::add_crossing_estimates(std::span<const SolidBody
         }
       }
     }
+  }
+}
+
+void PenetrationDepthEstimator::compute_triangle_boxes(const SolidBody& body,
+                                                       std::span<const std::uint32_t> triangles,
+                                                       TriangleBoxes& out) {
+  const std::vector<Vec3>& x = body.positions();
+  const std::vector<Triangle>& surface = body.topology().surface;
+  out.lo.resize(triangles.size());
+  out.hi.resize(triangles.size());
+  out.largest = 0;
+  for (std::size_t c = 0; c < triangles.size(); ++c) {
+    const Triangle& t = surface[triangles[c]];
+    out.lo[c] = x[t[0]].cwiseMin(x[t[1]]).cwiseMin(x[t[2]]);
+    out.hi[c] = x[t[0]].cwiseMax(x[t[1]]).cwiseMax(x[t[2]]);
+    out.largest = std::max(out.largest, (out.hi[c] - out.lo[c]).norm());
   }
 }
 
@@ -250,12 +294,14 @@ void PenetrationDepthEstimator::compute(std::span<const SolidBody> bodies,
   queued_round_.assign(count, kNone);
 
   vertex_normals_.resize(bodies.size());
+  triangle_boxes_.resize(bodies.size());
   normals_needed_.assign(bodies.size(), 0);
   for (const CollidingNode& c : collisions.nodes) normals_needed_[c.penetrated_body] = 1;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (normals_needed_[b]) {
       compute_vertex_normals(bodies[b].positions(), bodies[b].topology().surface,
                              vertex_normals_[b]);
+      compute_triangle_boxes(bodies[b], collisions.triangles[b], triangle_boxes_[b]);
     }
   }
 

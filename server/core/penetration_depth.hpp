@@ -66,9 +66,18 @@ class PenetrationDepthEstimator {
     Vec3 barycentric = Vec3::Zero();
   };
 
+  /// The boxes of a body's colliding triangles, in the order of CollisionSet::triangles.
+  struct TriangleBoxes {
+    std::vector<Vec3> lo, hi;
+    Real largest = 0;  ///< the longest box diagonal
+  };
+
+  static void compute_triangle_boxes(const SolidBody& body,
+                                     std::span<const std::uint32_t> triangles, TriangleBoxes& out);
   std::uint32_t entry_for(std::size_t flat_node, std::uint32_t penetrated_body) const;
   /// The hit of x + t·direction, t ∈ [0, t_max], with the surface of body `penetrated`: the
-  /// cached triangle when it is still hit, else the nearest among the colliding triangles.
+  /// cached triangle when it is still hit, else the nearest among the colliding triangles
+  /// (the first of them in their order on a tie).
   /// Triangles with a corner in `exclude` (nodes of the same body) are skipped.
   SurfaceHit cast(std::span<const SolidBody> bodies, const CollisionSet& collisions,
                   std::uint32_t penetrated, const Vec3& x, const Vec3& direction, Real t_max,
@@ -93,6 +102,7 @@ class PenetrationDepthEstimator {
   std::vector<std::uint32_t> front_, next_front_;
   std::vector<std::uint8_t> normals_needed_;       ///< per body: is it penetrated
   std::vector<std::vector<Vec3>> vertex_normals_;  ///< per body, of the penetrated bodies
+  std::vector<TriangleBoxes> triangle_boxes_;      ///< per body, of the penetrated bodies
   std::vector<CachedTriangle> crossing_cache_;     ///< per flat edge and inside end
   std::vector<CachedTriangle> contact_cache_;      ///< per flat node
 };

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/embedded_surface.hpp"
+#include "core/node_mask.hpp"
 #include "core/tet_mesh.hpp"
 
 namespace felt {
@@ -119,7 +120,9 @@ class SolidBody {
 
   /// Elastic and damping forces of the model at the current positions and velocities,
   /// written (not added) into f. Shape matching reports the force of its goal springs.
-  void internal_forces(std::span<Vec3> f) const;
+  /// With a mask, f is right (bit for bit) at the selected nodes only, and the elements that
+  /// act on none of them are skipped (shape matching evaluates everything).
+  void internal_forces(std::span<Vec3> f, NodeMask mask = {}) const;
 
   /// Moves the nodes over one step of length h under the model, gravity and the external
   /// forces, before collisions: position Verlet in the time-corrected form for a step length

@@ -6,6 +6,8 @@
 #include <span>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "core/solid_body.hpp"
 #include "core/spatial_hash.hpp"
 
@@ -36,7 +38,7 @@ Real mean_rest_edge_length(std::span<const SolidBody> bodies);
 /// What the last detection looked at and found (Table 7.3 counts colliding nodes and
 /// triangles).
 struct CollisionCounts {
-  std::size_t hashed_nodes = 0;
+  std::size_t hashed_nodes = 0;     ///< those in their body's reach (see detect)
   std::size_t candidates = 0;       ///< node–tetrahedron pairs the hash proposed
   std::size_t colliding_nodes = 0;  ///< entries of CollisionSet::nodes
   std::size_t colliding_triangles = 0;
@@ -51,9 +53,12 @@ class SolidCollisionDetector {
   void set_cell_size(Real cell_size);
   Real cell_size() const { return cell_size_; }
 
-  /// Phase 1 hashes every node; phase 2 tests the nodes in the cells each tetrahedron's box
-  /// overlaps, by box and then by barycentric coordinates. Writes out.nodes and remembers which
-  /// nodes collide or are corners of a tetrahedron containing a colliding node.
+  /// Phase 1 hashes the nodes inside their body's reach (the hull of the overlaps of its
+  /// bounding box with those of the bodies it can collide with); phase 2 tests the nodes in the
+  /// cells each tetrahedron's box overlaps within those boxes (of the tetrahedra whose box meets
+  /// their body's reach), by box and then by barycentric coordinates: the same nodes, in the
+  /// same order, as hashing and querying everything. Writes out.nodes and remembers which nodes
+  /// collide or are corners of a tetrahedron containing a colliding node.
   ///
   /// A node of the tetrahedron's own body counts only when the body has self_collision and the
   /// node is neither a corner of the tetrahedron nor an edge neighbour of one: a node that
@@ -71,7 +76,11 @@ class SolidCollisionDetector {
   Real cell_size_ = 0;
   SpatialHash hash_;
   CollisionCounts counts_;
-  std::vector<std::size_t> node_offset_;  ///< first flat node index of each body
+  std::vector<std::size_t> node_offset_;                ///< first flat node index of each body
+  std::vector<Eigen::AlignedBox<Real, 3>> body_boxes_;  ///< of each body's nodes
+  /// per body: the hull of its box's overlaps with the boxes of the bodies it can touch
+  std::vector<Eigen::AlignedBox<Real, 3>> reach_;
+  std::vector<std::uint8_t> outcodes_;  ///< per flat node: beyond which faces of its reach
   std::vector<std::uint8_t> colliding_;
   std::vector<std::uint8_t> participating_;
   /// the last body found to contain each node: one entry per (node, penetrated body), as

@@ -84,7 +84,8 @@ TEST_P(StableStep, IsBelowTheTrueLimitAndTheDynamicsAgree) {
   const Real estimate = body.stable_time_step();
   const Real limit = critical_step(body);
   EXPECT_LT(estimate, limit);
-  EXPECT_GT(estimate, 0.3 * limit);  // block Gershgorin overestimates ω² about 2.5×
+  // the safety margin of 0.7 on the rest eigenvalue, and nothing else, separates them
+  EXPECT_GT(estimate, 0.65 * limit);
   EXPECT_LT(energy_growth(GetParam(), 0.98 * estimate, 3000), 2);
   EXPECT_FALSE(energy_growth(GetParam(), 1.2 * limit, 3000) < 1e6);
 }
@@ -214,7 +215,8 @@ TEST(SolidBody, FreeBodyConservesMomentum) {
 }
 
 /// The energy of a freely vibrating body (no gravity, nothing pinned, stretched 10 % along x
-/// and released) after each of the steps of half the stable step over `duration`, relative to
+/// and released) after each of the steps of a quarter of the stable step (a sixth of the true
+/// limit, where the nonlinear terms leave a wobble of about 1 %) over `duration`, relative to
 /// the start. Kinetic energy from the half-step velocities on either side of the positions the
 /// elastic energy is taken at, ½ m v₋·v₊ + U(x): for a linear system the quantity position
 /// Verlet conserves exactly, so what remains is the model's own loss (or gain).
@@ -222,7 +224,7 @@ std::vector<Real> vibration_energies(SolidMaterial material, Real duration) {
   SolidBody body("cube", box({3, 3, 3}, 1), material);
   for (Vec3& x : body.positions()) x.x() *= 1.1;
   const Real start = body.elastic_energy();
-  const Real h = 0.5 * body.stable_time_step();
+  const Real h = 0.25 * body.stable_time_step();
   std::vector<Real> energies;
   for (Real t = 0; t < duration; t += h) {
     const Real elastic = body.elastic_energy();
