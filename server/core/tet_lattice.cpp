@@ -25,8 +25,7 @@ constexpr std::array<std::array<int, 4>, 5> kOddCell = {{
 
 }  // namespace
 
-TetMesh make_cell_lattice(const LatticeGrid& grid,
-                          const std::function<bool(int, int, int)>& keep) {
+TetMesh make_cell_lattice(const LatticeGrid& grid, const std::function<bool(int, int, int)>& keep) {
   const auto [nx, ny, nz] = grid.cells;
   const auto grid_index = [&](int i, int j, int k) {
     return static_cast<std::size_t>(i) +

@@ -24,8 +24,7 @@ struct LatticeGrid {
 
 /// The lattice of the cells for which keep(i, j, k) is true, with only the nodes they use,
 /// numbered in x-fastest grid order. Tetrahedra come five per kept cell, in cell order.
-TetMesh make_cell_lattice(const LatticeGrid& grid,
-                          const std::function<bool(int, int, int)>& keep);
+TetMesh make_cell_lattice(const LatticeGrid& grid, const std::function<bool(int, int, int)>& keep);
 
 /// The full box: (nx+1)(ny+1)(nz+1) nodes and 5·nx·ny·nz tetrahedra.
 TetMesh make_box_lattice(const LatticeGrid& grid);

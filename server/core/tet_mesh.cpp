@@ -53,7 +53,8 @@ TetTopology build_topology(const TetMesh& mesh) {
   std::map<std::array<std::uint32_t, 3>, std::pair<Triangle, int>> faces;
   for (const Tetrahedron& t : mesh.tets) {
     const std::array<Triangle, 4> outward = {Triangle{t[0], t[2], t[1]}, Triangle{t[0], t[1], t[3]},
-                                             Triangle{t[0], t[3], t[2]}, Triangle{t[1], t[2], t[3]}};
+                                             Triangle{t[0], t[3], t[2]},
+                                             Triangle{t[1], t[2], t[3]}};
     for (const Triangle& face : outward) {
       std::array<std::uint32_t, 3> key = face;
       std::ranges::sort(key);

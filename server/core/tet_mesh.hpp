@@ -32,8 +32,9 @@ void orient_positive(TetMesh& mesh);
 
 /// Everything the solver and the collision pipeline look up about a mesh, built once.
 struct TetTopology {
-  std::vector<Edge> edges;        ///< unique, each as (lower, higher)
-  std::vector<Triangle> surface;  ///< faces of exactly one tetrahedron, counter-clockwise from outside
+  std::vector<Edge> edges;  ///< unique, each as (lower, higher)
+  std::vector<Triangle>
+      surface;  ///< faces of exactly one tetrahedron, counter-clockwise from outside
   /// neighbours of node n through edges: neighbour_index[neighbour_offset[n] .. [n + 1])
   std::vector<std::uint32_t> neighbour_offset;
   std::vector<std::uint32_t> neighbour_index;

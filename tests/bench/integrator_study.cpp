@@ -38,11 +38,13 @@
 
 #include "core/cloth_grid.hpp"
 #include "core/world.hpp"
+#include "study_output.hpp"
 
 namespace felt {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using namespace study;
 constexpr Real kNaN = std::numeric_limits<Real>::quiet_NaN();
 
 // --- the problems ------------------------------------------------------------------------------
@@ -91,53 +93,6 @@ Plan full_plan() {
 }
 Plan quick_plan() {
   return {{2e-3, 1e-3, 5e-4}, {150, 1500}, 5e-5};
-}
-
-// --- progress
-// --------------------------------------------------------------------------------------
-
-class Progress {
- public:
-  explicit Progress(int total) : total_(total), start_(Clock::now()) {}
-  /// Starts an item: "[12/96] cloth rk4 h=0.5ms k=150 ...".
-  void begin(const char* format, ...) __attribute__((format(printf, 2, 3))) {
-    std::fprintf(stderr, "[%d/%d] ", ++done_, total_);
-    va_list args;
-    va_start(args, format);
-    std::vfprintf(stderr, format, args);
-    va_end(args);
-    std::fprintf(stderr, " ...");
-    std::fflush(stderr);
-    item_start_ = Clock::now();
-  }
-  /// Ends it with a result.
-  void end(const std::string& result) {
-    std::fprintf(stderr, " %s (%.1f s, total %.0f s)\n", result.c_str(), seconds_since(item_start_),
-                 elapsed());
-  }
-  double elapsed() const { return seconds_since(start_); }
-
- private:
-  static double seconds_since(Clock::time_point t) {
-    return std::chrono::duration<double>(Clock::now() - t).count();
-  }
-  int total_;
-  int done_ = 0;
-  Clock::time_point start_, item_start_;
-};
-
-std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
-std::string format(const char* fmt, ...) {
-  char buffer[256];
-  va_list args;
-  va_start(args, fmt);
-  std::vsnprintf(buffer, sizeof buffer, fmt, args);
-  va_end(args);
-  return buffer;
-}
-
-double seconds(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
 // --- (a) the oscillator
@@ -219,7 +174,7 @@ OscillatorRun run_oscillator(std::string_view integrator, Real k, Real h) {
     if (n + 1 == error_step)
       run.error = oscillator_error(body, static_cast<Real>(n + 1) * h, omega);
   }
-  run.wall_ms_per_sim_s = 1e3 * seconds(start) / (static_cast<Real>(run.steps_done) * h);
+  run.wall_ms_per_sim_s = 1e3 * seconds_since(start) / (static_cast<Real>(run.steps_done) * h);
   if (run.stable) run.drift = (energy(body) - start_energy) / start_energy;
   return run;
 }
@@ -304,7 +259,7 @@ ClothRun run_cloth(std::string_view integrator, Real k, Real h) {
       break;
     }
   }
-  run.wall_seconds = seconds(start);
+  run.wall_seconds = seconds_since(start);
   const ClothBody& body = std::as_const(world).cloths()[0];
   run.x = body.state().x;
   run.energy = cloth_energy(body);
@@ -412,11 +367,6 @@ StableStep cloth_stable_step(std::string_view integrator, Real k, const std::vec
 
 // --- output
 // ----------------------------------------------------------------------------------------
-
-std::string csv_number(Real value) {
-  if (!std::isfinite(value)) return "";
-  return format("%.6g", value);
-}
 
 const char* bound_name(Bound b) {
   switch (b) {
@@ -678,36 +628,6 @@ std::string make_tables(const Plan& plan, const std::vector<std::string_view>& i
   return out.str();
 }
 
-constexpr std::string_view kBegin = "<!-- BEGIN integrator_study tables";
-constexpr std::string_view kEnd = "<!-- END integrator_study tables -->";
-
-/// Replaces what lies between the markers in OUT_DIR/integrators.md; creates the file if it is
-/// missing; writes OUT_DIR/integrators_tables.md if the file has no markers.
-void write_markdown(const std::filesystem::path& dir, const std::string& tables) {
-  const std::filesystem::path path = dir / "integrators.md";
-  const std::string begin =
-      std::string(kBegin) + " (written by integrator_study; edits here are overwritten) -->\n";
-  const std::string end = std::string(kEnd) + "\n";
-  std::string text;
-  if (std::ifstream in(path); in) {
-    std::ostringstream s;
-    s << in.rdbuf();
-    text = s.str();
-  } else {
-    text = "# Integrators: measured trade-offs\n\n" + begin + end;
-  }
-  const std::size_t b = text.find(kBegin);
-  const std::size_t e = text.find(kEnd);
-  if (b == std::string::npos || e == std::string::npos || e < b) {
-    std::ofstream(dir / "integrators_tables.md") << tables;
-    std::fprintf(stderr, "%s has no table markers; tables written to integrators_tables.md\n",
-                 path.c_str());
-    return;
-  }
-  text = text.substr(0, b) + begin + tables + end + text.substr(e + end.size());
-  std::ofstream(path) << text;
-}
-
 int run_study(const std::filesystem::path& dir, const Plan& plan) {
   std::filesystem::create_directories(dir);
   const std::vector<std::string_view> integrators = integrator_names();
@@ -724,14 +644,15 @@ int run_study(const std::filesystem::path& dir, const Plan& plan) {
   for (Real k : plan.stiffness) {
     for (std::string_view name : integrators) {
       for (Real h : plan.steps) {
-        progress.begin("oscillator %s h=%sms k=%g", std::string(name).c_str(), ms(h).c_str(), k);
+        progress.begin(
+            format("oscillator %s h=%sms k=%g", std::string(name).c_str(), ms(h).c_str(), k));
         const OscillatorRun run = run_oscillator(name, k, h);
         rows.push_back({"oscillator", std::string(name), k, h, run.steps, run.steps_done,
                         run.stable, run.error, run.wall_ms_per_sim_s, run.drift});
         progress.end(format("error %.2g, drift %.2g, %.3g ms/s%s", run.error, run.drift,
                             run.wall_ms_per_sim_s, run.stable ? "" : ", unstable"));
       }
-      progress.begin("oscillator stable step %s k=%g", std::string(name).c_str(), k);
+      progress.begin(format("oscillator stable step %s k=%g", std::string(name).c_str(), k));
       const StableStep s = oscillator_stable_step(name, k);
       limits.push_back({"oscillator", std::string(name), k, s});
       progress.end(limit_cell(s) + " ms");
@@ -740,14 +661,15 @@ int run_study(const std::filesystem::path& dir, const Plan& plan) {
 
   // (b) the cloth
   for (Real k : plan.stiffness) {
-    progress.begin("cloth reference rk4 h=%sms k=%g", ms(plan.reference_step).c_str(), k);
+    progress.begin(format("cloth reference rk4 h=%sms k=%g", ms(plan.reference_step).c_str(), k));
     const ClothRun reference = run_cloth("rk4", k, plan.reference_step);
     if (reference.failed) {
       std::fprintf(stderr, "\nthe reference blew up; choose a smaller reference step\n");
       return 1;
     }
     progress.end(format("%.1f s wall", reference.wall_seconds));
-    progress.begin("cloth reference check rk4 h=%sms k=%g", ms(2 * plan.reference_step).c_str(), k);
+    progress.begin(
+        format("cloth reference check rk4 h=%sms k=%g", ms(2 * plan.reference_step).c_str(), k));
     const ClothRun check = run_cloth("rk4", k, 2 * plan.reference_step);
     const Real self_error = max_distance(reference.x, check.x) / 15;
     references.push_back({k, self_error, reference.wall_seconds});
@@ -756,7 +678,7 @@ int run_study(const std::filesystem::path& dir, const Plan& plan) {
     for (std::string_view name : integrators) {
       std::vector<bool> stable_at;
       for (Real h : plan.steps) {
-        progress.begin("cloth %s h=%sms k=%g", std::string(name).c_str(), ms(h).c_str(), k);
+        progress.begin(format("cloth %s h=%sms k=%g", std::string(name).c_str(), ms(h).c_str(), k));
         const ClothRun run = run_cloth(name, k, h);
         Row row{"cloth", std::string(name), k, h, run.steps, run.steps_done, !run.failed};
         if (!run.failed) {
@@ -773,7 +695,7 @@ int run_study(const std::filesystem::path& dir, const Plan& plan) {
                 ? format("blew up at step %ld of %ld", run.steps_done + 1, run.steps)
                 : format("error %.3g mm, %.3g ms/s", row.error * 1e3, row.wall_ms_per_sim_s));
       }
-      progress.begin("cloth stable step %s k=%g", std::string(name).c_str(), k);
+      progress.begin(format("cloth stable step %s k=%g", std::string(name).c_str(), k));
       const StableStep s = cloth_stable_step(name, k, plan.steps, stable_at);
       limits.push_back({"cloth", std::string(name), k, s});
       progress.end(limit_cell(s) + format(" ms (%d trials)", s.trials));
@@ -782,7 +704,9 @@ int run_study(const std::filesystem::path& dir, const Plan& plan) {
 
   write_csv(dir / "integrators.csv", rows, limits);
   write_limits_csv(dir / "integrators_stable_step.csv", limits, integrators);
-  write_markdown(dir, make_tables(plan, integrators, rows, limits, references, progress.elapsed()));
+  write_tables(dir, "integrators.md", "Integrators: measured trade-offs", "integrators_tables.md",
+               "integrator_study",
+               make_tables(plan, integrators, rows, limits, references, progress.elapsed()));
   std::fprintf(stderr, "done in %.0f s: %s\n", progress.elapsed(), dir.c_str());
   return 0;
 }

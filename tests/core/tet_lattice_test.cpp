@@ -72,8 +72,8 @@ TEST(TetLattice, NeighboursAreTheEdges) {
 TEST(TetLattice, KeptCellsOnlyUseTheirNodes) {
   LatticeGrid grid = cube_grid(3, 3.0);
   // an L of two cells
-  const TetMesh mesh = make_cell_lattice(
-      grid, [](int i, int j, int k) { return k == 0 && j == 0 && i < 2; });
+  const TetMesh mesh =
+      make_cell_lattice(grid, [](int i, int j, int k) { return k == 0 && j == 0 && i < 2; });
   EXPECT_EQ(mesh.nodes.size(), 12u);
   EXPECT_EQ(mesh.tets.size(), 10u);
   EXPECT_NEAR(total_volume(mesh.nodes, mesh.tets), 2.0, 1e-12);
