@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <Eigen/QR>
 
@@ -53,6 +54,79 @@ std::vector<std::vector<std::uint32_t>> make_clusters(const TetMesh& mesh, bool 
     result.push_back(std::move(nodes));
   }
   return result;
+}
+
+using Mat6 = Eigen::Matrix<Real, 6, 6>;
+using Vec6 = Eigen::Matrix<Real, 6, 1>;
+
+/// Relative eigenvalue below which a rigid motion counts as one the pinned nodes leave free.
+constexpr Real kFreeMotion = 1e-9;
+
+/// [r]×, so that [r]× w = r × w.
+Mat3 cross_matrix(const Vec3& r) {
+  Mat3 m;
+  m << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+  return m;
+}
+
+/// Adds a unit mass at offset r to the rigid-body mass matrix of rigid motions (t, w), whose
+/// field is t + w × r: [[I, −[r]×], [[r]×, |r|² I − r rᵀ]] (mass, first moment, inertia).
+void add_unit_mass(Mat6& mass, const Vec3& r) {
+  const Mat3 cross = cross_matrix(r);
+  mass.topLeftCorner<3, 3>() += Mat3::Identity();
+  mass.topRightCorner<3, 3>() -= cross;
+  mass.bottomLeftCorner<3, 3>() += cross;
+  mass.bottomRightCorner<3, 3>() += r.squaredNorm() * Mat3::Identity() - r * r.transpose();
+}
+
+/// The rigid share of the load (see shape_matching.hpp): the acceleration field of the body
+/// moving as one rigid body under the accelerations `load` with its pinned nodes held. By
+/// Gauss's principle of least constraint it is the rigid field nearest the load over the free
+/// nodes (equal masses) among those that leave every pinned node at rest.
+void rigid_share(std::span<const Vec3> x, std::span<const Real> inv_mass,
+                 std::span<const Vec3> load, std::span<Vec3> share) {
+  Vec3 centre = Vec3::Zero();
+  for (const Vec3& p : x) centre += p;
+  centre /= static_cast<Real>(x.size());
+  Real radius_squared = 0;
+  for (const Vec3& p : x) radius_squared += (p - centre).squaredNorm();
+  // offsets in units of the body's radius weigh turning and moving alike in the eigenvalues
+  Real radius = std::sqrt(radius_squared / static_cast<Real>(x.size()));
+  if (!(radius > 0)) radius = 1;  // every node at one point: no turning to speak of
+
+  Mat6 free_mass = Mat6::Zero(), held_mass = Mat6::Zero();
+  Vec6 free_load = Vec6::Zero();  // the load's force and torque on the free nodes
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const Vec3 r = (x[i] - centre) / radius;
+    if (inv_mass[i] == 0) {
+      add_unit_mass(held_mass, r);
+    } else {
+      add_unit_mass(free_mass, r);
+      free_load.head<3>() += load[i];
+      free_load.tail<3>() += r.cross(load[i]);
+    }
+  }
+  // the motions the pins allow move no pinned node: the null space of the pinned nodes' mass
+  // matrix (all six without pins, turning about the pin or the line of pins, none from three
+  // pins off a line)
+  const Eigen::SelfAdjointEigenSolver<Mat6> held(held_mass);
+  const Vec6& eigenvalues = held.eigenvalues();  // ascending
+  int free_motions = 0;
+  while (free_motions < 6 && eigenvalues(free_motions) <= kFreeMotion * eigenvalues(5)) {
+    ++free_motions;
+  }
+  if (free_motions == 0) {
+    std::ranges::fill(share, Vec3::Zero());  // held still
+    return;
+  }
+  const auto allowed = held.eigenvectors().leftCols(free_motions);
+  const Eigen::MatrixXd mass = allowed.transpose() * free_mass * allowed;
+  // least norm where the free nodes leave a motion undetermined (collinear, or a single one)
+  const Vec6 motion =
+      allowed * mass.completeOrthogonalDecomposition().solve(allowed.transpose() * free_load);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    share[i] = motion.head<3>() + motion.tail<3>().cross((x[i] - centre) / radius);
+  }
 }
 
 }  // namespace
@@ -208,18 +282,23 @@ void ShapeMatching::step(std::span<Vec3> x, std::span<Vec3> v, std::span<const R
   }
   goal_.resize(n);
   rigid_.resize(n);
+  share_.resize(n);
   goals(x, goal_);
   rigid_velocities(x, v, rigid_);
+  rigid_share(x, inv_mass, acceleration, share_);
   // Implicit in the goal spring and the damper with the goal held: with s = e^(h/τ) − 1 the
   // relative motion's double eigenvalue is 1/(1 + s) = e^(−h/τ), the exact decay of the
-  // critically damped spring, at any h; α = s² → (h/τ)² as h → 0.
-  const Real s = std::expm1(h / material_.time_constant);
+  // critically damped spring, at any h; α = s² → (h/τ)² as h → 0. The load's rigid share moves
+  // the rigid motion; the rest shifts the goal by τ² a, where the spring m/τ² holds it.
+  const Real tau = material_.time_constant;
+  const Real s = std::expm1(h / tau);
   const Real alpha = s * s;
   const Real divisor = (1 + s) * (1 + s);
   for (std::size_t i = 0; i < n; ++i) {
     if (inv_mass[i] == 0) continue;
     const Vec3 relative = v[i] - rigid_[i];
-    v[i] = rigid_[i] + h * acceleration[i] + (relative + alpha / h * (goal_[i] - x[i])) / divisor;
+    const Vec3 loaded_goal = goal_[i] + tau * tau * (acceleration[i] - share_[i]);
+    v[i] = rigid_[i] + h * share_[i] + (relative + alpha / h * (loaded_goal - x[i])) / divisor;
     x[i] += h * v[i];
   }
 }

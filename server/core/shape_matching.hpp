@@ -11,11 +11,29 @@
 // deformation decays like (1 + t/τ) e^(−t/τ) at any step, and a body in rigid mode snaps back
 // to its shape within a few τ. Unconditionally stable.
 //
-// A steady load is not yet step-independent: the load a enters explicitly (so a free cluster
-// falls exactly), and a held body then sags by h² a (1 + s)²/s², s = e^(h/τ) − 1, which is τ² a
-// only as h → 0 (docs/results/solid_models.md measures it). Taking the load into the implicit
-// solve fixes the sag but slows free fall; doing both needs the rigid motion's share of the load
-// split off per cluster.
+// A steady load a is step-independent for a body held by pins. Entering as h a outside the
+// solve (the paper's form), it stops a held node where α/h (g − x) = −(1 + s)² h a: τ_eff² a
+// from its goal, τ_eff = h (1 + s)/s = h / (1 − e^(−h/τ)), which is τ only for h ≪ τ (25 τ² a
+// at h = 5τ). Inside the solve, as a goal shifted by τ² a (where the spring m/τ² holds m a), the
+// node stops at g − x = −τ² a at any h, the continuous equilibrium; but a shifted goal moves a
+// node only as far as its spring pulls, and when the load moves the body rigidly the goals move
+// along: a free body would fall at (τ/τ_eff)² g, not g. So the load is split. Its rigid share
+// a_R, the acceleration field of the whole body moving as one rigid body under the load with its
+// pinned nodes held (Gauss's principle of least constraint: the rigid field nearest the load
+// that leaves the pins at rest), enters beside the rigid velocity as before, so a free body
+// falls and turns as a rigid body would; the rest shifts the goal:
+//   v' = r + h a_R + (v − r + α/h (g + τ² (a − a_R) − x)) / (1 + s)².
+// Pinned at three nodes off a line, a body has a_R = 0, and at rest each free node hangs τ² a
+// from its goal at any step. The split cannot be per cluster: uniform gravity is all rigid share
+// for any one cluster; what holds a cluster is its neighbours and the pins, which only the whole
+// body sees.
+//
+// Still step-dependent: a body held by contact (the floor, another body) is free as far as this
+// update knows, so it still sinks τ_eff² a into its goals. A slow mode of a clustered body
+// (bending, where the goals move almost with the nodes) feels its stiffness through the per-node
+// implicit spring, (τ/τ_eff)² of its value, and its share of the load is weakened alike: it
+// settles where it should but swings τ_eff/τ times slower (about h/τ for h ≫ τ), as it did before
+// the split, when it also settled (τ_eff/τ)² too far (docs/results/solid_models.md).
 
 #include <cstdint>
 #include <span>
@@ -44,7 +62,8 @@ class ShapeMatching {
                         std::span<Vec3> rigid) const;
 
   /// One step of length h: plastic flow of the rest shapes, then the update (3.4) of the nodes
-  /// with nonzero inverse mass under the external accelerations `acceleration`.
+  /// with nonzero inverse mass under the external accelerations `acceleration`, split into
+  /// their rigid share and the rest as above (nodes with zero inverse mass are the pins).
   void step(std::span<Vec3> x, std::span<Vec3> v, std::span<const Real> inv_mass,
             std::span<const Vec3> acceleration, Real h);
 
@@ -78,8 +97,8 @@ class ShapeMatching {
 
   ShapeMatchingMaterial material_;
   std::vector<Cluster> clusters_;
-  std::vector<Real> inv_cluster_count_;  ///< per node, 1 / the number of its clusters, or 0
-  std::vector<Vec3> goal_, rigid_;       ///< scratch for step()
+  std::vector<Real> inv_cluster_count_;     ///< per node, 1 / the number of its clusters, or 0
+  std::vector<Vec3> goal_, rigid_, share_;  ///< scratch for step()
 };
 
 }  // namespace felt

@@ -1,5 +1,8 @@
 #include "core/shape_matching.hpp"
 
+#include <cmath>
+#include <cstdio>
+
 #include <gtest/gtest.h>
 
 #include "solid_fixtures.hpp"
@@ -9,6 +12,8 @@ namespace {
 
 using Mode = ShapeMatchingMaterial::Mode;
 using test::box;
+
+const Vec3 kGravity(0, -9.81, 0);
 
 ShapeMatchingMaterial matching(Mode mode, Real beta, bool clusters) {
   ShapeMatchingMaterial m;
@@ -119,7 +124,7 @@ std::vector<Vec3> sagging_bar(const ShapeMatchingMaterial& material, Real h, Rea
     if (body.rest().nodes[n].x() == 0) body.pin(n);
   }
   const int steps = static_cast<int>(std::lround(duration / h));
-  for (int s = 0; s < steps; ++s) test::step(body, h, Vec3(0, -9.81, 0));
+  for (int s = 0; s < steps; ++s) test::step(body, h, kGravity);
   return body.positions();
 }
 
@@ -155,7 +160,7 @@ TEST(ShapeMatching, RigidModeKeepsTheShapeOfAThrownBody) {
     body.positions()[n] += offsets[n];
     body.velocities()[n] = Vec3(2, 5, 0) + omega.cross(body.positions()[n] - Vec3(0.5, 0.5, 0.5));
   }
-  for (int s = 0; s < 100; ++s) test::step(body, 0.005, Vec3(0, -9.81, 0));
+  for (int s = 0; s < 100; ++s) test::step(body, 0.005, kGravity);
   const std::vector<Vec3>& x = body.positions();
   const std::vector<Vec3>& x0 = body.rest().nodes;
   for (std::size_t a = 0; a < x.size(); ++a) {
@@ -164,6 +169,79 @@ TEST(ShapeMatching, RigidModeKeepsTheShapeOfAThrownBody) {
     }
   }
   EXPECT_GT((x[0] - x0[0]).norm(), 1);  // it did fly
+}
+
+/// A bar pinned at x = 0, left under gravity for 40 s at steps of h: time enough to come to rest
+/// at every step tried.
+SolidBody bar_at_rest(const ShapeMatchingMaterial& material, Real h) {
+  SolidBody body("bar", box({4, 1, 1}, 0.25), body_material(material, 0.05));
+  for (std::uint32_t n = 0; n < body.node_count(); ++n) {
+    if (body.rest().nodes[n].x() == 0) body.pin(n);
+  }
+  const int steps = static_cast<int>(std::lround(40 / h));
+  for (int s = 0; s < steps; ++s) test::step(body, h, kGravity);
+  return body;
+}
+
+// A steady load is step-independent: at rest every free node hangs τ² g below its goal (the
+// spring m/τ² holding m g, the continuous equilibrium), so the bar sags the same at steps from
+// τ/3 to 5τ. The load used to enter outside the implicit goal springs, and the nodes hung
+// (h (1 + s)/s)² g below their goals, s = e^(h/τ) − 1: 1.4 times τ² g at 1 ms, 25 times at 15.
+TEST(ShapeMatching, SteadySagDoesNotDependOnTheStep) {
+  for (Mode mode : {Mode::kRigid, Mode::kLinear, Mode::kQuadratic}) {
+    ShapeMatchingMaterial material = matching(mode, 0.5, false);
+    material.time_constant = 0.003;
+    const Vec3 hang = material.time_constant * material.time_constant * kGravity;
+    std::vector<Real> sags;
+    for (Real h : {0.001, 0.005, 0.015}) {
+      const SolidBody body = bar_at_rest(material, h);
+      EXPECT_LT(body.kinetic_energy(), 1e-10) << "not at rest at h = " << h;  // 16 µm/s rms
+      const std::vector<Vec3> goal = goals(ShapeMatching(body.rest(), material), body.positions());
+      Real sag = 0;
+      int tip = 0;
+      for (std::uint32_t n = 0; n < body.node_count(); ++n) {
+        if (body.inv_mass()[n] > 0) {
+          EXPECT_LT((body.positions()[n] - goal[n] - hang).norm(), 1e-3 * hang.norm());
+        }
+        if (body.rest().nodes[n].x() == 1) {
+          sag += body.rest().nodes[n].y() - body.positions()[n].y();
+          ++tip;
+        }
+      }
+      sags.push_back(sag / tip);
+    }
+    std::printf("mode %d: tip sag %.4g mm at 1 ms, %.4g at 5 ms, %.4g at 15 ms\n",
+                static_cast<int>(mode), 1e3 * sags[0], 1e3 * sags[1], 1e3 * sags[2]);
+    EXPECT_GT(sags[0], 10 * hang.norm());  // the goals themselves turned down: the bar bends
+    for (Real sag : sags) EXPECT_NEAR(sag, sags[0], 0.01 * sags[0]);
+  }
+}
+
+// The other half of the split: a free body takes the whole rigid share of its load outside
+// the goal springs, so under gravity and a push at one corner its momentum grows by exactly
+// the applied impulse and its centre moves as a point mass's would, at a step of 5 τ.
+TEST(ShapeMatching, LoadAcceleratesAFreeBodyAsAPointMass) {
+  ShapeMatchingMaterial material = matching(Mode::kLinear, 0.5, false);
+  material.time_constant = 0.003;
+  SolidBody body("cube", box({2, 2, 2}, 0.5), body_material(material, 0.05));
+  const Real mass = 0.05 * static_cast<Real>(body.node_count());
+  const Vec3 push(3, 0, -1);
+  constexpr Real kStep = 0.015;
+  constexpr int kSteps = 40;
+  const Vec3 start = test::sum(body.positions()) / static_cast<Real>(body.node_count());
+  for (int s = 0; s < kSteps; ++s) {
+    body.add_external_force(0, push);
+    test::step(body, kStep, kGravity);
+  }
+  const Vec3 force = push + mass * kGravity;
+  const Vec3 momentum = 0.05 * test::sum(body.velocities());
+  EXPECT_LT((momentum - kSteps * kStep * force).norm(), 1e-12 * force.norm());
+  // symplectic Euler on a point mass: x_n = x₀ + h² n (n + 1)/2 · F/M
+  const Vec3 centre = test::sum(body.positions()) / static_cast<Real>(body.node_count());
+  const Vec3 expected = start + kStep * kStep * kSteps * (kSteps + 1) / 2 * force / mass;
+  EXPECT_LT((centre - expected).norm(), 1e-12 * (expected - start).norm());
+  // the push at a corner also turned it: not a plain translation
+  EXPECT_GT((body.positions()[0] - body.rest().nodes[0] - (centre - start)).norm(), 1e-3);
 }
 
 /// Length of a bar pinned at x = 0 and pulled along x at its far end for 0.3 s, then left
