@@ -35,6 +35,8 @@ struct RunOptions {
   std::uint64_t steps = 0;
   std::vector<std::string> overrides;
   std::string stats_json;
+  std::string record;
+  std::string replay;
 };
 
 /// Mesh files of a scene resolve inside the scene directory, as they do for clients.
@@ -173,6 +175,7 @@ nlohmann::json stats_to_json(const felt::BatchRunStats& stats) {
     bodies.push_back(std::move(entry));
   }
   const felt::SolidRunStats& solids = stats.solids;
+  const felt::HapticRunStats& haptics = stats.haptics;
   return {{"steps", stats.steps},
           {"sim_time", stats.sim_time},
           {"wall_seconds", stats.wall_seconds},
@@ -189,7 +192,17 @@ nlohmann::json stats_to_json(const felt::BatchRunStats& stats) {
             {"max_colliding_triangles", solids.max_colliding_triangles},
             {"max_substeps", solids.max_substeps},
             {"mean_stage_ms", stage_times_to_json(solids.mean_ms)},
-            {"max_stage_ms", stage_times_to_json(solids.max_ms)}}}};
+            {"max_stage_ms", stage_times_to_json(solids.max_ms)}}},
+          {"haptics",
+           {{"ticks", haptics.ticks},
+            {"contact_ticks", haptics.contact_ticks},
+            {"mean_contact_us", haptics.mean_contact_us},
+            {"mean_free_us", haptics.mean_free_us},
+            {"max_force", haptics.max_force},
+            {"max_force_step", haptics.max_force_step},
+            {"mean_force_step", haptics.mean_force_step},
+            {"compared", haptics.compared},
+            {"equivalent", haptics.equivalent}}}};
 }
 
 int run(const RunOptions& options) {
@@ -214,7 +227,29 @@ int run(const RunOptions& options) {
     std::cerr << "feltd: " << options.scene << ": " << scene.error().what() << "\n";
     return 2;
   }
-  const felt::BatchRunStats stats = felt::run_batch(*scene, options.steps);
+  felt::BatchHaptics haptics;
+  std::vector<felt::HapticRecord> replayed;
+  if (!options.replay.empty()) {
+    std::ifstream in(options.replay);
+    auto records =
+        in ? felt::read_recording(in) : std::unexpected(std::string("cannot open the file"));
+    if (!records) {
+      std::cerr << "feltd: --replay " << options.replay << ": " << records.error() << "\n";
+      return 2;
+    }
+    replayed = std::move(*records);
+    haptics.replay = &replayed;
+  }
+  std::ofstream recording;
+  if (!options.record.empty()) {
+    recording.open(options.record);
+    if (!recording) {
+      std::cerr << "feltd: --record: cannot write " << options.record << "\n";
+      return 2;
+    }
+    haptics.record = &recording;
+  }
+  const felt::BatchRunStats stats = felt::run_batch(*scene, options.steps, haptics);
   const nlohmann::json json = stats_to_json(stats);
   std::printf("%llu steps, sim %.4f s, wall %.3f s, %.4f ms/step\n",
               static_cast<unsigned long long>(stats.steps), stats.sim_time, stats.wall_seconds,
@@ -223,6 +258,18 @@ int run(const RunOptions& options) {
     std::printf("solids: %zu nodes, %zu edges, %zu triangles, %zu tetrahedra\n",
                 totals["nodes"].get<std::size_t>(), totals["edges"].get<std::size_t>(),
                 totals["triangles"].get<std::size_t>(), totals["tets"].get<std::size_t>());
+  }
+  if (const felt::HapticRunStats& h = stats.haptics; h.ticks > 0) {
+    std::printf(
+        "haptics: %llu ticks, %llu in contact, %.2f us/tick in contact, %.2f free, "
+        "max force %.3f N, force step max %.4f N mean %.5f N\n",
+        static_cast<unsigned long long>(h.ticks), static_cast<unsigned long long>(h.contact_ticks),
+        h.mean_contact_us, h.mean_free_us, h.max_force, h.max_force_step, h.mean_force_step);
+    if (h.compared > 0) {
+      std::printf("replay: %llu of %llu updates collision-equivalent to the recording\n",
+                  static_cast<unsigned long long>(h.equivalent),
+                  static_cast<unsigned long long>(h.compared));
+    }
   }
   if (stats.nonfinite) {
     std::printf("UNSTABLE: %llu steps could not be rescued (rolled back, body stopped)\n",
@@ -277,6 +324,12 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--scene-dir", run_options.scene_dir,
                       "Directory mesh files resolve in (default: the scene file's directory)");
   run_cmd->add_option("--stats-json", run_options.stats_json, "Write run statistics to this file");
+  run_cmd->add_option("--record", run_options.record,
+                      "Write every scripted-device update (position, contact, force) to this CSV");
+  run_cmd
+      ->add_option("--replay", run_options.replay,
+                   "Drive the devices from a --record CSV and compare their contacts with it")
+      ->check(CLI::ExistingFile);
 
   CLI11_PARSE(app, argc, argv);
   if (serve_cmd->parsed()) return serve(serve_options);

@@ -51,9 +51,8 @@ void SpatialHash::begin(Real cell_size, std::size_t point_count) {
   entries_.reserve(point_count);
 }
 
-void SpatialHash::insert(std::uint32_t body, std::uint32_t node, const Vec3& x) {
+void SpatialHash::insert(std::uint32_t body, std::uint32_t node, const Cell& cell) {
   FELT_CHECK(entries_.size() < kNone);
-  const Cell cell = cell_of(x);
   Bucket& bucket = buckets_[slot_of(cell)];
   if (bucket.stamp != stamp_) {
     bucket.stamp = stamp_;

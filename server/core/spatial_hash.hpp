@@ -24,7 +24,12 @@ class SpatialHash {
   void begin(Real cell_size, std::size_t point_count);
 
   /// Stores node `node` of body `body` at position x.
-  void insert(std::uint32_t body, std::uint32_t node, const Vec3& x);
+  void insert(std::uint32_t body, std::uint32_t node, const Vec3& x) {
+    insert(body, node, cell_of(x));
+  }
+  /// Stores node `node` of body `body` in `cell`: an entry that spans several cells (a triangle
+  /// hashed by its bounding box) is stored once per cell.
+  void insert(std::uint32_t body, std::uint32_t node, const Cell& cell);
 
   /// Calls visit(body, node) once for every stored point whose cell the box [lo, hi] overlaps:
   /// a superset of the points inside the box.

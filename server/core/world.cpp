@@ -59,6 +59,9 @@ void World::add_surface_force(std::uint32_t id, std::uint32_t vertex, const Vec3
 
 StepReport World::step() {
   StepReport report;
+  step_colliders_.assign(colliders_.begin(), colliders_.end());
+  step_colliders_.insert(step_colliders_.end(), moving_colliders_.begin(), moving_colliders_.end());
+  moving_colliders_.clear();
   if (!energy_valid_) {
     energy_.resize(cloths_.size());
     for (std::size_t b = 0; b < cloths_.size(); ++b) {
@@ -93,7 +96,8 @@ StepReport World::step() {
   }
   energy_valid_ = true;
   if (!solids_.bodies().empty()) {
-    const SolidStepStats& solid = solids_.step(settings_.time_step, settings_.gravity, colliders_);
+    const SolidStepStats& solid =
+        solids_.step(settings_.time_step, settings_.gravity, step_colliders_);
     if (solid.rescued) report.flags |= kStepRescued;
     if (solid.unrecoverable) {
       // the solids step together, so all of them were rolled back
@@ -116,7 +120,7 @@ bool World::try_step(std::size_t cloth, int substeps, Real& energy) {
   for (int s = 0; s < substeps; ++s) {
     body.integrator().step(body, body.state(), time_ + s * h, h);
     limit_stretch(body.model(), body.inv_mass(), body.params().stretch, h, body.state());
-    resolve_collisions(colliders_, body.inv_mass(), body.params().thickness, body.state());
+    resolve_collisions(step_colliders_, body.inv_mass(), body.params().thickness, body.state());
     if (body.params().self_collision) {
       self_collision_[cloth].resolve(body.model().triangles, body.inv_mass(),
                                      body.params().thickness, body.state());

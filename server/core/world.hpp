@@ -77,6 +77,11 @@ class World {
   const SolidSystem& solids() const { return solids_; }
   void add_collider(const Collider& collider) { colliders_.push_back(collider); }
   const std::vector<Collider>& colliders() const { return colliders_; }
+  /// Colliders for the next step only, besides the scene's: the haptic proxies' spheres, so
+  /// that a cloth wraps around a finger pressing into it instead of folding into the sphere.
+  void set_moving_colliders(std::vector<Collider> colliders) {
+    moving_colliders_ = std::move(colliders);
+  }
 
   /// Advances every body by one time step. A cloth whose step leaves a non-finite or exploding
   /// state is rolled back and stepped again with 2, 4, ... substeps; if none works it is rolled
@@ -101,6 +106,8 @@ class World {
   SolidSystem solids_;
   std::vector<BodyRef> refs_;
   std::vector<Collider> colliders_;
+  std::vector<Collider> moving_colliders_;
+  std::vector<Collider> step_colliders_;  ///< the scene's and the moving ones, for one step
   /// kinetic + elastic energy of each body after the last step, reused as the next step's
   /// starting energy unless bodies() was handed out in between
   std::vector<Real> energy_;

@@ -152,15 +152,16 @@ void handle_proxy_update(Session& session, std::uint64_t request_id,
                        "position must be three finite numbers");
     return;
   }
-  const auto proxy_key = session.open_proxy(update.proxy_id());
-  if (!proxy_key) {
+  HapticProxy* proxy = session.open_proxy(update.proxy_id());
+  if (!proxy) {
     session.send_error(request_id, v1::ERROR_CODE_LIMIT_EXCEEDED,
                        "at most " +
                            std::to_string(session.context().options.max_proxies_per_session) +
                            " proxies per session");
     return;
   }
-  const ProxyContact contact = session.scene()->touch(*proxy_key, position);
+  const ProxyOutput out = session.scene()->render(*proxy, position, update.buttons());
+  const HapticContact& contact = out.contact;
 
   ServerMessage reply;
   reply.set_request_id(request_id);
@@ -169,8 +170,14 @@ void handle_proxy_update(Session& session, std::uint64_t request_id,
   put_vec3(contact.force, *force->mutable_force());
   put_vec3(contact.contact_point, *force->mutable_contact_point());
   force->set_in_contact(contact.in_contact);
-  force->set_body_id(contact.body_id);
+  force->set_body_id(out.grabbing ? out.grabbed_body : contact.body_id);
   force->set_triangle(contact.triangle);
+  put_vec3(contact.proxy, *force->mutable_proxy());
+  put_vec3(contact.normal, *force->mutable_normal());
+  force->set_constraints(static_cast<std::uint32_t>(contact.constraints));
+  force->set_slipping(contact.slipping);
+  force->set_grabbing(out.grabbing);
+  force->set_grabbed_vertex(out.grabbed_vertex);
   force->set_client_time_us(update.client_time_us());
   force->set_server_receive_ns(received);
   force->set_server_send_ns(steady_ns());

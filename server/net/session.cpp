@@ -153,7 +153,7 @@ void Session::join(SceneId id, std::shared_ptr<SceneRunner> scene) {
 
 void Session::leave_scene() {
   if (scene_) {
-    for (std::uint32_t proxy : proxies_) scene_->close_proxy(key_of(proxy));
+    for (const auto& [id, proxy] : proxies_) scene_->close_proxy(proxy);
   }
   proxies_.clear();
   scene_.reset();
@@ -168,12 +168,11 @@ std::uint64_t Session::key_of(std::uint32_t proxy_id) const {
   return (id_ << 32) | proxy_id;
 }
 
-std::optional<std::uint64_t> Session::open_proxy(std::uint32_t proxy_id) {
-  if (!proxies_.contains(proxy_id)) {
-    if (proxies_.size() >= context_.options.max_proxies_per_session) return std::nullopt;
-    proxies_.insert(proxy_id);
-  }
-  return key_of(proxy_id);
+HapticProxy* Session::open_proxy(std::uint32_t proxy_id) {
+  const auto it = proxies_.find(proxy_id);
+  if (it != proxies_.end()) return &it->second;
+  if (proxies_.size() >= context_.options.max_proxies_per_session) return nullptr;
+  return &proxies_.emplace(proxy_id, scene_->open_proxy(key_of(proxy_id))).first->second;
 }
 
 void Session::subscribe_frames(double rate_hz, bool normals) {

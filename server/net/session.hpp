@@ -6,9 +6,9 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
-#include <set>
 #include <string>
 
 #include <boost/asio.hpp>
@@ -47,9 +47,9 @@ class Session : public std::enable_shared_from_this<Session> {
   /// Joins a scene, leaving the previous one (its proxies are closed, frames restart).
   void join(SceneId id, std::shared_ptr<SceneRunner> scene);
 
-  /// The key the runtime knows this session's proxy `proxy_id` by, opening the proxy on first
-  /// use; nothing when the session already has as many proxies as it may.
-  std::optional<std::uint64_t> open_proxy(std::uint32_t proxy_id);
+  /// This session's proxy `proxy_id` in its scene, opened on first use; null when the session
+  /// already has as many proxies as it may.
+  HapticProxy* open_proxy(std::uint32_t proxy_id);
 
   /// Streams frames of the joined scene at up to `rate_hz`.
   void subscribe_frames(double rate_hz, bool normals);
@@ -85,7 +85,7 @@ class Session : public std::enable_shared_from_this<Session> {
   bool greeted_ = false;
   SceneId scene_id_ = 0;
   std::shared_ptr<SceneRunner> scene_;
-  std::set<std::uint32_t> proxies_;
+  std::map<std::uint32_t, HapticProxy> proxies_;
 
   boost::asio::steady_timer frame_timer_;
   bool streaming_ = false;

@@ -2,8 +2,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <optional>
+#include <utility>
 
 #include "core/mesh_topology.hpp"
+#include "runtime/haptic_frame.hpp"
+#include "runtime/reaction_accumulator.hpp"
+#include "runtime/scripted_devices.hpp"
 
 namespace felt {
 namespace {
@@ -63,14 +69,113 @@ BodyRunStats solid_stats(const SolidBody& body) {
   return stats;
 }
 
+/// The scene's scripted devices ticked between steps in simulated time.
+class BatchServo {
+ public:
+  BatchServo(const Scene& scene, const BatchHaptics& options)
+      : options_(options),
+        devices_(options.replay ? devices_from_recording(*options.replay) : scene.devices,
+                 scene.haptics, 0),
+        kind_(scene.haptic_structure),
+        ticks_per_step_(std::max<std::uint64_t>(
+            1, static_cast<std::uint64_t>(
+                   std::llround(scene.world.settings().time_step * scene.servo_rate)))),
+        last_forces_(devices_.size()),
+        was_touching_(devices_.size(), false) {
+    if (options.record) devices_.record_to(options.record);
+  }
+
+  bool empty() const { return devices_.empty(); }
+
+  void before_step(World& world) { reactions_.apply_and_clear(world); }
+
+  /// Ticks the devices through the step that just ended at `world.time()`.
+  void after_step(const World& world, HapticRunStats& stats) {
+    snapshot_ = make_snapshot(world, snapshot_.get());
+    // two frames take turns: the older one is refitted into the newer
+    auto frame =
+        make_haptic_frame(snapshot_, frame_.get(), std::move(spare_), kind_, SteadyClock::now());
+    spare_ = std::exchange(frame_, std::move(frame));
+    const Real h = world.settings().time_step;
+    const Real start = world.time() - h;
+    const Real dt = h / static_cast<Real>(ticks_per_step_);
+    for (std::uint64_t k = 1; k <= ticks_per_step_; ++k) {
+      const auto tick_start = std::chrono::steady_clock::now();
+      devices_.tick(frame_->surface_at(static_cast<Real>(k) / ticks_per_step_),
+                    start + static_cast<Real>(k) * dt, dt, reactions_);
+      const double us =
+          1e6 *
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - tick_start).count();
+      record_tick(us, stats);
+    }
+  }
+
+ private:
+  void record_tick(double us, HapticRunStats& stats) {
+    ++stats.ticks;
+    bool touching = false;
+    const auto& latest = devices_.latest();
+    for (std::size_t d = 0; d < latest.size(); ++d) {
+      const HapticRecord& r = latest[d];
+      touching = touching || r.in_contact;
+      stats.max_force = std::max(stats.max_force, r.force.norm());
+      if (r.in_contact && was_touching_[d]) {
+        const double change = (r.force - last_forces_[d]).norm();
+        stats.max_force_step = std::max(stats.max_force_step, change);
+        stats.mean_force_step += change;
+        ++force_steps_;
+      }
+      was_touching_[d] = r.in_contact;
+      last_forces_[d] = r.force;
+      if (options_.replay && replayed_ < options_.replay->size()) {
+        ++stats.compared;
+        stats.equivalent +=
+            collision_equivalent((*options_.replay)[replayed_++], r, options_.tolerance) ? 1 : 0;
+      }
+    }
+    if (touching) {
+      ++stats.contact_ticks;
+      stats.mean_contact_us += us;
+    } else {
+      stats.mean_free_us += us;
+    }
+  }
+
+ public:
+  void finish(HapticRunStats& stats) const {
+    if (stats.contact_ticks) stats.mean_contact_us /= static_cast<double>(stats.contact_ticks);
+    if (stats.ticks > stats.contact_ticks) {
+      stats.mean_free_us /= static_cast<double>(stats.ticks - stats.contact_ticks);
+    }
+    if (force_steps_) stats.mean_force_step /= static_cast<double>(force_steps_);
+  }
+
+ private:
+  const BatchHaptics& options_;
+  ScriptedDevices devices_;
+  TriangleQueryKind kind_;
+  std::uint64_t ticks_per_step_;
+  ReactionAccumulator reactions_;
+  std::shared_ptr<const SceneSnapshot> snapshot_;
+  std::shared_ptr<HapticFrame> frame_, spare_;
+  std::vector<Vec3> last_forces_;
+  std::vector<bool> was_touching_;
+  std::uint64_t force_steps_ = 0;
+  std::size_t replayed_ = 0;
+};
+
 }  // namespace
 
-BatchRunStats run_batch(Scene& scene, std::uint64_t steps) {
+BatchRunStats run_batch(Scene& scene, std::uint64_t steps, const BatchHaptics& haptics) {
   BatchRunStats stats;
   World& world = scene.world;
+  std::optional<BatchServo> servo;
+  if (!scene.devices.empty() || haptics.replay) servo.emplace(scene, haptics);
   const auto start = std::chrono::steady_clock::now();
   for (std::uint64_t s = 0; s < steps; ++s) {
+    if (servo) servo->before_step(world);
     const StepReport report = world.step();
+    if (servo) servo->after_step(world, stats.haptics);
     if (report.flags & kStepRescued) ++stats.rescued_steps;
     if (report.flags & kStepUnrecoverable) ++stats.unrecoverable_steps;
     if (!world.solids().bodies().empty()) {
@@ -79,6 +184,7 @@ BatchRunStats run_batch(Scene& scene, std::uint64_t steps) {
   }
   stats.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (servo) servo->finish(stats.haptics);
   stats.steps = steps;
   stats.sim_time = world.time();
   stats.ms_per_step = steps ? 1e3 * stats.wall_seconds / static_cast<double>(steps) : 0;

@@ -2,9 +2,11 @@
 // Stepping a scene headless, as fast as it goes: `feltd run`, tests and benchmarks.
 
 #include <cstdint>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
+#include "core/haptic_recording.hpp"
 #include "scene/scene.hpp"
 
 namespace felt {
@@ -34,6 +36,31 @@ struct SolidRunStats {
   SolidStageTimes max_ms;   ///< the slowest step of each stage
 };
 
+/// The scripted haptic devices over a run: timings like thesis 1 Table 9.4, the force's
+/// smoothness in contact (its vibration), and, when replaying, collision equivalence.
+struct HapticRunStats {
+  std::uint64_t ticks = 0;
+  std::uint64_t contact_ticks = 0;  ///< ticks where some device touched something
+  double mean_contact_us = 0;       ///< mean time of a tick with contact ("CD")
+  double mean_free_us = 0;          ///< and without ("N-CD")
+  double max_force = 0;             ///< N, over every device and tick
+  /// N: the largest and the mean change of a device's force from one tick to the next while it
+  /// stays in contact
+  double max_force_step = 0;
+  double mean_force_step = 0;
+  std::uint64_t compared = 0;    ///< replay: records compared
+  std::uint64_t equivalent = 0;  ///< replay: of those, collision-equivalent
+};
+
+/// What a batch run does with the scene's scripted devices besides ticking them.
+struct BatchHaptics {
+  std::ostream* record = nullptr;  ///< every tick's records go here (CSV)
+  /// replay: the devices follow these records' positions instead of their scripts, and each
+  /// tick is compared with the record it replays
+  const std::vector<HapticRecord>* replay = nullptr;
+  Real tolerance = 1e-6;  ///< m, for collision equivalence
+};
+
 struct BatchRunStats {
   std::uint64_t steps = 0;
   double sim_time = 0;
@@ -44,9 +71,12 @@ struct BatchRunStats {
   std::uint64_t unrecoverable_steps = 0;
   std::vector<BodyRunStats> bodies;
   SolidRunStats solids;
+  HapticRunStats haptics;
 };
 
-/// Takes `steps` steps of `scene` and reports what happened.
-BatchRunStats run_batch(Scene& scene, std::uint64_t steps);
+/// Takes `steps` steps of `scene` and reports what happened. The scene's scripted devices are
+/// ticked at the servo rate in simulated time, after each step, against the surfaces between
+/// the last two steps (as the servo thread renders them live), so a run is reproducible.
+BatchRunStats run_batch(Scene& scene, std::uint64_t steps, const BatchHaptics& haptics = {});
 
 }  // namespace felt

@@ -29,6 +29,11 @@ void ReactionAccumulator::add_free(std::uint64_t proxy_key) {
   ++reactions_[proxy_key].samples;
 }
 
+void ReactionAccumulator::set_sphere(std::uint64_t proxy_key, std::optional<Collider> sphere) {
+  std::lock_guard lock(mutex_);
+  reactions_[proxy_key].sphere = sphere;
+}
+
 void ReactionAccumulator::forget(std::uint64_t proxy_key) {
   std::lock_guard lock(mutex_);
   const auto it = reactions_.find(proxy_key);
@@ -37,8 +42,10 @@ void ReactionAccumulator::forget(std::uint64_t proxy_key) {
 
 void ReactionAccumulator::apply_and_clear(World& world) {
   std::lock_guard lock(mutex_);
+  spheres_.clear();
   for (auto it = reactions_.begin(); it != reactions_.end();) {
     ProxyReaction& reaction = it->second;
+    if (reaction.sphere && !reaction.closed) spheres_.push_back(*reaction.sphere);
     if (reaction.samples > 0) {
       const Real weight = Real{1} / reaction.samples;
       reaction.held.swap(reaction.forces);
@@ -54,6 +61,7 @@ void ReactionAccumulator::apply_and_clear(World& world) {
     }
     it = reaction.closed ? reactions_.erase(it) : std::next(it);
   }
+  world.set_moving_colliders(spheres_);
 }
 
 }  // namespace felt

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -24,11 +25,16 @@ class ReactionAccumulator {
   /// Records an update of proxy `proxy_key` that touched nothing.
   void add_free(std::uint64_t proxy_key);
 
+  /// Where proxy `proxy_key`'s sphere is now (null: it takes no room, e.g. while grabbing):
+  /// for the next step, bodies collide with it as with a scene collider.
+  void set_sphere(std::uint64_t proxy_key, std::optional<Collider> sphere);
+
   /// Drops a closed proxy after the next step has applied what it pushed last.
   void forget(std::uint64_t proxy_key);
 
   /// Applies each proxy's mean force since the last step (or, without new updates, the mean it
-  /// applied last) as external forces on the bodies. Called by the physics thread only.
+  /// applied last) as external forces on the bodies, and its sphere as a collider for the
+  /// step. Called by the physics thread only.
   void apply_and_clear(World& world);
 
  private:
@@ -41,6 +47,7 @@ class ReactionAccumulator {
     std::vector<ParticleForce> forces;  ///< summed per particle since the last step
     std::uint32_t samples = 0;
     std::vector<ParticleForce> held;  ///< the mean applied at the last step
+    std::optional<Collider> sphere;
     bool closed = false;
   };
   // bounds the memory a proxy can pin between two steps
@@ -48,6 +55,7 @@ class ReactionAccumulator {
 
   std::mutex mutex_;
   std::unordered_map<std::uint64_t, ProxyReaction> reactions_;
+  std::vector<Collider> spheres_;  ///< scratch for apply_and_clear
 };
 
 }  // namespace felt

@@ -17,17 +17,30 @@ constexpr double kEventIntervalSeconds = 0.5;
 constexpr std::size_t kKeptEvents = 16;
 // real-time factor and step time are averaged over windows this long
 constexpr double kStatsWindowSeconds = 0.5;
+// haptic frames are made while some proxy was rendered this recently
+constexpr auto kHapticIdle = std::chrono::seconds(1);
+// retired haptic frames kept for reuse: the latest, one a reader may still hold, one free
+constexpr std::size_t kHapticPoolSize = 3;
 
 }  // namespace
 
 SceneRunner::SceneRunner(Scene scene)
-    : scene_(std::move(scene)), name_(scene_.name), haptics_(scene_.haptics) {
+    : scene_(std::move(scene)),
+      name_(scene_.name),
+      haptics_(scene_.haptics),
+      haptic_structure_(scene_.haptic_structure) {
   publish();
   for (const BodySnapshot& body : latest()->bodies) {
     const bool cloth = scene_.world.body_ref(body.body_id).kind == BodyRef::Kind::kCloth;
     bodies_.push_back({body.body_id, body.name, cloth ? "cloth" : "solid",
                        static_cast<std::uint32_t>(body.positions.size()),
                        static_cast<std::uint32_t>(body.triangles().size())});
+  }
+  if (!scene_.devices.empty()) {
+    // sessions key their proxies by session id (from 1) in the high half: 0 is the servo's
+    servo_ = std::make_unique<HapticServo>(
+        ScriptedDevices(scene_.devices, haptics_, 0), scene_.servo_rate,
+        [this] { return haptic_frame(); }, reactions_);
   }
 }
 
@@ -38,33 +51,69 @@ SceneRunner::~SceneRunner() {
 void SceneRunner::start() {
   if (thread_.joinable()) return;
   thread_ = std::jthread([this](std::stop_token stop) { run(stop); });
+  if (servo_) servo_->start();
 }
 
 void SceneRunner::stop() {
+  if (servo_) servo_->stop();
   if (!thread_.joinable()) return;
   thread_.request_stop();
   wake_.notify_all();
   thread_.join();
 }
 
-ProxyContact SceneRunner::touch(std::uint64_t proxy_key, const Vec3& position) {
-  const auto snapshot = latest();
-  ProxyContact contact = solve_proxy_contact(*snapshot, haptics_, position);
-  if (contact.in_contact) {
-    const BodySnapshot& body = snapshot->bodies[contact.body_id];
-    reactions_.add(proxy_key, contact.body_id, body.triangles()[contact.triangle],
-                   contact.barycentric, -contact.force);
-  } else {
-    reactions_.add_free(proxy_key);
-  }
+std::vector<HapticRecord> SceneRunner::device_states() const {
+  return servo_ ? servo_->latest() : std::vector<HapticRecord>{};
+}
+
+ProxyOutput SceneRunner::render(HapticProxy& proxy, const Vec3& device, std::uint32_t buttons) {
+  const auto frame = haptic_frame();
+  const SteadyClock::time_point now = SteadyClock::now();
+  const ProxyOutput out =
+      proxy.update(frame->surface(now), proxy.seconds_since_last(now), device, buttons, reactions_);
   haptic_updates_.fetch_add(1, std::memory_order_relaxed);
-  return contact;
+  return out;
+}
+
+std::shared_ptr<const HapticFrame> SceneRunner::haptic_frame() {
+  const SteadyClock::time_point now = SteadyClock::now();
+  const SteadyClock::time_point last(
+      SteadyClock::duration(last_render_.exchange(now.time_since_epoch().count())));
+  auto frame = haptic_.load();
+  if (frame && now - last < kHapticIdle) return frame;
+  // the physics thread may have stopped making frames: start from a still copy of the latest
+  std::lock_guard lock(haptic_mutex_);
+  frame = haptic_.load();
+  const auto snapshot = latest();
+  if (!frame || frame->to != snapshot) {
+    frame = make_haptic_frame(snapshot, nullptr, nullptr, haptic_structure_, now);
+    haptic_.store(frame);
+  }
+  return frame;
+}
+
+void SceneRunner::publish_haptics(SteadyClock::time_point now) {
+  const SteadyClock::time_point last(SteadyClock::duration(last_render_.load()));
+  if (now - last >= kHapticIdle) return;
+  std::lock_guard lock(haptic_mutex_);
+  std::shared_ptr<HapticFrame> recycled;
+  for (const auto& retired : haptic_pool_) {
+    if (retired.use_count() == 1) recycled = retired;
+  }
+  const auto previous = haptic_.load();
+  auto frame = make_haptic_frame(latest(), previous.get(), recycled, haptic_structure_, now);
+  if (!recycled) {
+    if (haptic_pool_.size() == kHapticPoolSize) haptic_pool_.erase(haptic_pool_.begin());
+    haptic_pool_.push_back(frame);
+  }
+  haptic_.store(std::move(frame));
 }
 
 RunnerStats SceneRunner::stats() const {
   std::lock_guard lock(stats_mutex_);
   RunnerStats stats = stats_;
   stats.haptic_updates = haptic_updates_.load(std::memory_order_relaxed);
+  if (servo_) stats.servo = servo_->stats();
   return stats;
 }
 
@@ -130,7 +179,10 @@ void SceneRunner::run(std::stop_token stop) {
       failed_bodies.clear();
       last_event = Clock::now();
     }
-    if (stepped) publish();
+    if (stepped) {
+      publish();
+      publish_haptics(SteadyClock::now());
+    }
 
     const Clock::time_point after = Clock::now();
     {

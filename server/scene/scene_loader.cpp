@@ -11,6 +11,7 @@
 
 #include "core/cloth_grid.hpp"
 #include "core/mesh_cloth.hpp"
+#include "scene/haptics_reader.hpp"
 #include "scene/obj_reader.hpp"
 #include "scene/object_reader.hpp"
 #include "scene/solid_reader.hpp"
@@ -322,13 +323,13 @@ Scene read_scene(const json& document, const SceneLoadOptions& options) {
                      {"max_step", "contact_iterations", "min_depth", "max_speed", "friction"}));
   }
 
-  Scene scene{root.string("name", "unnamed"), World(settings, solid_settings), ProxySettings{}};
+  Scene scene(root.string("name", "unnamed"), World(settings, solid_settings));
   if (root.has("haptics")) {
-    const ObjectReader haptics(root.at("haptics"), root.path_of("haptics"),
-                               {"proxy_radius", "stiffness", "max_force"});
-    scene.haptics.radius = haptics.positive("proxy_radius", scene.haptics.radius);
-    scene.haptics.stiffness = haptics.positive("stiffness", scene.haptics.stiffness);
-    scene.haptics.max_force = haptics.positive("max_force", scene.haptics.max_force);
+    read_haptics(ObjectReader(root.at("haptics"), root.path_of("haptics"),
+                              {"proxy_radius", "stiffness", "damping", "max_force",
+                               "max_force_change", "static_friction", "dynamic_friction",
+                               "force_shading", "structure", "servo_rate", "devices"}),
+                 scene);
   }
 
   if (root.has("colliders")) {

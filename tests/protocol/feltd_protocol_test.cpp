@@ -3,6 +3,7 @@
 #include <signal.h>
 
 #include <cmath>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -143,6 +144,63 @@ TEST_F(FeltdTest, ProxyPushedIntoTheClothIsPushedBackOut) {
   EXPECT_EQ(free.force().z(), 0);
 }
 
+TEST_F(FeltdTest, AClientFeelsSlidesAlongAndGrabsAMovingCloth) {
+  Client client;
+  connect(client);
+  client.hello("test");
+  // a 1 m cloth held at its four corners, sagging and swaying under the finger
+  client.load_scene_json(R"({ "time_step": 0.001, "gravity": [0, -9.81, 0],
+    "haptics": { "proxy_radius": 0.02, "stiffness": 400, "max_force": 20 },
+    "bodies": [ { "type": "cloth",
+      "grid": { "nx": 20, "ny": 20, "center": [0, 1, 0], "plane": "xz" }, "mass": 0.5,
+      "springs": { "structural": { "stiffness": 200, "damping": 0.05 },
+                   "shear": { "stiffness": 50, "damping": 0.02 },
+                   "bend": { "stiffness": 5, "damping": 0.005 } },
+      "integrator": "symplectic_euler", "pin": "four_corners" } ] })");
+  client.subscribe_frames(60, false);
+  // one update a millisecond, as a device's servo loop sends them
+  using Point = std::array<double, 3>;
+  const auto move = [&](Point from, Point to, int updates, std::uint32_t buttons) {
+    v1::ForceUpdate last;
+    for (int i = 1; i <= updates; ++i) {
+      const double s = static_cast<double>(i) / updates;
+      last = client.proxy_update(0,
+                                 {from[0] + s * (to[0] - from[0]), from[1] + s * (to[1] - from[1]),
+                                  from[2] + s * (to[2] - from[2])},
+                                 buttons);
+      std::this_thread::sleep_for(1ms);
+    }
+    return last;
+  };
+  // press down into the sag: held on top of the cloth, pushed back up
+  v1::ForceUpdate force = move({0, 1.2, 0}, {0, 0.55, 0}, 300, 0);
+  ASSERT_TRUE(force.in_contact());
+  EXPECT_GT(force.force().y(), 1.0);
+  EXPECT_GT(force.proxy().y(), 0.55);
+  // slide sideways, pressed in: the cloth never lets the proxy through
+  for (int i = 1; i <= 200; ++i) {
+    force = client.proxy_update(0, {0.2 * i / 200.0, 0.55, 0});
+    ASSERT_TRUE(force.in_contact()) << "update " << i;
+    ASSERT_GT(force.force().y(), 0) << "update " << i;
+    std::this_thread::sleep_for(1ms);
+  }
+  EXPECT_GT(force.contact_point().x(), 0.1);  // it slid along
+  // grab where it touches and lift the cloth
+  force = client.proxy_update(0, {0.2, 0.55, 0}, 1);
+  ASSERT_TRUE(force.grabbing());
+  const std::uint32_t held = force.grabbed_vertex();
+  force = move({0.2, 0.55, 0}, {0.2, 1.1, 0}, 300, 1);
+  ASSERT_TRUE(force.grabbing());
+  EXPECT_EQ(force.grabbed_vertex(), held);
+  EXPECT_GT(std::abs(force.force().y()), 0.1);  // the grab spring (batch tests check its value)
+  std::optional<v1::Frame> frame;
+  for (int i = 0; i < 3; ++i) frame = client.next_frame(5s);
+  ASSERT_TRUE(frame);
+  EXPECT_GT(vertex(frame->bodies(0), static_cast<int>(held))[1], 0.9);  // lifted out of the sag
+  // let go
+  EXPECT_FALSE(client.proxy_update(0, {0.2, 1.5, 0}, 0).grabbing());
+}
+
 TEST_F(FeltdTest, SoftSolidsStreamTheirFineSurfaceAndCanBeTouched) {
   Client client;
   connect(client);
@@ -172,6 +230,12 @@ TEST_F(FeltdTest, SoftSolidsStreamTheirFineSurfaceAndCanBeTouched) {
   const v1::ForceUpdate force = client.proxy_update(0, at);
   ASSERT_TRUE(force.in_contact());
   EXPECT_GT(force.force().y(), 0);
+  // and grab it: the cube is far too heavy to lift, so it pulls the device down
+  EXPECT_TRUE(client.proxy_update(0, at, 1).grabbing());
+  const v1::ForceUpdate grab = client.proxy_update(0, {at[0], at[1] + 0.05, at[2]}, 1);
+  EXPECT_TRUE(grab.grabbing());
+  EXPECT_EQ(grab.body_id(), 2u);
+  EXPECT_LT(grab.force().y(), 0);
 
   // the cubes fall and settle onto each other; their surfaces stay finite
   std::optional<v1::Frame> later;

@@ -6,7 +6,7 @@ namespace felt {
 namespace {
 
 std::shared_ptr<SceneRunner> empty_runner() {
-  return std::make_shared<SceneRunner>(Scene{"empty", World(), ProxySettings{}});
+  return std::make_shared<SceneRunner>(Scene("empty", World()));
 }
 
 TEST(SceneRegistry, StaleIdsAreNeverReused) {

@@ -28,7 +28,10 @@ Scene flat_cloth_scene(Vec3 gravity = Vec3::Zero()) {
   ClothBody cloth("sheet", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
                   make_integrator("symplectic_euler"));
   for (std::uint32_t p : grid_pin_indices(spec, GridPinPreset::kFourCorners)) cloth.pin(p);
-  Scene scene{"flat", World(WorldSettings{gravity, 1e-3, 100, 6}), ProxySettings{0.05, 400, 10}};
+  Scene scene("flat", World(WorldSettings{gravity, 1e-3, 100, 6}));
+  scene.haptics.radius = 0.05;
+  scene.haptics.stiffness = 400;
+  scene.haptics.max_force = 10;
   scene.world.add_body(std::move(cloth));
   return scene;
 }
@@ -74,14 +77,20 @@ TEST(SceneRunner, AppliesPostedCommandsBetweenSteps) {
   runner.stop();
 }
 
+/// One update of `proxy` with no buttons held.
+HapticContact touch(SceneRunner& runner, HapticProxy& proxy, const Vec3& device) {
+  return runner.render(proxy, device, 0).contact;
+}
+
 TEST(SceneRunner, TouchPushesOutOfTheClothAndDentsIt) {
   SceneRunner runner(flat_cloth_scene());
+  HapticProxy proxy = runner.open_proxy(1);
   const std::uint32_t centre = 5 * 11 + 5;
   // a proxy of radius 5 cm centred 3 cm above the centre of the sheet: depth 2 cm
   const Vec3 above(0, 0.03, 0);
-  const ProxyContact contact = runner.touch(1, above);
+  const HapticContact contact = touch(runner, proxy, above);
   ASSERT_TRUE(contact.in_contact);
-  EXPECT_NEAR(contact.force.y(), 400 * 0.02, 1e-9);
+  EXPECT_NEAR(contact.force.y(), 400 * 0.02, 1e-6);
   EXPECT_NEAR(contact.force.x(), 0, 1e-12);
   EXPECT_NEAR(contact.force.z(), 0, 1e-12);
   EXPECT_NEAR(contact.contact_point.y(), 0, 1e-12);
@@ -90,7 +99,7 @@ TEST(SceneRunner, TouchPushesOutOfTheClothAndDentsIt) {
   runner.start();
   const auto deadline = std::chrono::steady_clock::now() + 300ms;
   while (std::chrono::steady_clock::now() < deadline) {
-    runner.touch(1, above);
+    touch(runner, proxy, above);
     std::this_thread::sleep_for(1ms);
   }
   runner.stop();
@@ -98,7 +107,8 @@ TEST(SceneRunner, TouchPushesOutOfTheClothAndDentsIt) {
   EXPECT_GT(runner.stats().haptic_updates, 50u);
 
   // from below, the force points down
-  const ProxyContact below = runner.touch(2, Vec3(0.2, -0.2, 0.2));
+  HapticProxy other = runner.open_proxy(2);
+  const HapticContact below = touch(runner, other, Vec3(0.2, -0.2, 0.2));
   EXPECT_FALSE(below.in_contact);
   EXPECT_EQ(below.force, Vec3::Zero());
   EXPECT_EQ(below.contact_point, Vec3(0.2, -0.2, 0.2));
@@ -107,13 +117,14 @@ TEST(SceneRunner, TouchPushesOutOfTheClothAndDentsIt) {
 TEST(SceneRunner, ASingleTouchKeepsPushingUntilTheNextUpdate) {
   // a device slower than the physics: its last reaction is held between its updates
   SceneRunner runner(flat_cloth_scene());
+  HapticProxy proxy = runner.open_proxy(1);
   const std::uint32_t centre = 5 * 11 + 5;
-  ASSERT_TRUE(runner.touch(1, Vec3(0, 0.03, 0)).in_contact);
+  ASSERT_TRUE(touch(runner, proxy, Vec3(0, 0.03, 0)).in_contact);
   runner.start();
   ASSERT_TRUE(wait_for([&] { return runner.latest()->sim_time >= 0.2; }));
   EXPECT_LT(runner.latest()->bodies[0].positions[centre].y(), -0.005);
   // a free update releases it: the sheet springs back toward flat
-  runner.touch(1, Vec3(0, 1, 0));
+  touch(runner, proxy, Vec3(0, 1, 0));
   ASSERT_TRUE(wait_for([&] { return runner.latest()->sim_time >= 2.0; }));
   runner.stop();
   EXPECT_GT(runner.latest()->bodies[0].positions[centre].y(), -0.002);
@@ -121,10 +132,41 @@ TEST(SceneRunner, ASingleTouchKeepsPushingUntilTheNextUpdate) {
 
 TEST(SceneRunner, ForceIsClampedToTheMaximum) {
   SceneRunner runner(flat_cloth_scene());
+  HapticProxy proxy = runner.open_proxy(1);
   // at the surface the depth is the whole radius: 400 N/m · 5 cm = 20 N, clamped to 10 N
-  const ProxyContact contact = runner.touch(1, Vec3(0.01, 0, 0.01));
+  const HapticContact contact = touch(runner, proxy, Vec3(0.01, 0.0001, 0.01));
   ASSERT_TRUE(contact.in_contact);
   EXPECT_NEAR(contact.force.norm(), 10, 1e-9);
+}
+
+TEST(SceneRunner, TheServoThreadDrivesTheScenesScriptedDevices) {
+  Scene scene = flat_cloth_scene();
+  DevicePath press;
+  press.shape = DevicePath::Shape::kPress;
+  press.a = Vec3(0, 0.3, 0);
+  press.b = Vec3(0, -0.05, 0);  // 10 cm into the sheet for a 5 cm proxy
+  press.period = 0.1;
+  scene.devices.push_back({"finger", press});
+  SceneRunner runner(std::move(scene));
+  runner.start();
+  // the sheet, pinned only at its corners, bounces on the finger: watch it for half a second
+  double largest_push = 0, deepest = 0;
+  const auto deadline = std::chrono::steady_clock::now() + 500ms;
+  while (std::chrono::steady_clock::now() < deadline) {
+    const auto devices = runner.device_states();
+    ASSERT_EQ(devices.size(), 1u);
+    if (devices[0].in_contact) largest_push = std::max(largest_push, devices[0].force.y());
+    deepest = std::min(deepest, runner.latest()->bodies[0].positions[5 * 11 + 5].y());
+    std::this_thread::sleep_for(2ms);
+  }
+  runner.stop();
+  const std::uint64_t ticks = runner.stats().servo.ticks;
+  EXPECT_GT(ticks, 100u);        // about 500 on an idle machine
+  EXPECT_GT(largest_push, 1.0);  // the sheet pushes back up on the finger
+  EXPECT_LT(deepest, -0.05);     // and the finger pushes it down
+  // stopping stopped the servo too
+  std::this_thread::sleep_for(20ms);
+  EXPECT_EQ(runner.stats().servo.ticks, ticks);
 }
 
 TEST(SceneRunner, StopsPromptly) {

@@ -1,0 +1,90 @@
+#include "runtime/haptic_proxy.hpp"
+
+#include <algorithm>
+
+#include "core/sphere_contact.hpp"
+
+namespace felt {
+
+Vec3 HapticProxy::starting_point(const HapticSurface& surface, const Vec3& device) const {
+  std::optional<SphereContact> deepest;
+  std::vector<Vec3> positions;
+  for (const HapticBody& body : surface.bodies) {
+    positions.resize(body.to.size());
+    for (std::uint32_t i = 0; i < positions.size(); ++i) positions[i] = surface.vertex(body, i);
+    const auto contact = find_sphere_contact(positions, body.triangles, device, settings_.radius);
+    if (contact && (!deepest || contact->depth > deepest->depth)) deepest = contact;
+  }
+  return deepest ? Vec3(device + deepest->depth * deepest->normal) : device;
+}
+
+Vec3 HapticProxy::grab_force(const HapticSurface& surface, const Vec3& device) const {
+  const HapticBody& body = surface.bodies[grab_->body];
+  Vec3 force = settings_.stiffness * (surface.vertex(body, grab_->vertex) - device);
+  const Real magnitude = force.norm();
+  if (magnitude > settings_.max_force) force *= settings_.max_force / magnitude;
+  return force;
+}
+
+Real HapticProxy::seconds_since_last(SteadyClock::time_point now) {
+  const Real dt = last_update_ == SteadyClock::time_point{}
+                      ? 0
+                      : std::chrono::duration<Real>(now - last_update_).count();
+  last_update_ = now;
+  return dt;
+}
+
+ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec3& device,
+                                std::uint32_t buttons, ReactionAccumulator& reactions) {
+  if (!god_) god_.emplace(settings_, starting_point(surface, device));
+
+  ProxyOutput out;
+  out.contact = god_->update(surface, device, dt);
+  const bool button_down = (buttons & kGrabButton) != 0;
+  if (!button_down) grab_.reset();
+  // a grab starts when the button is down and the proxy touches something: pressing first and
+  // then touching grabs too; a vertex that has left the body (it shrank) ends the grab
+  if (button_down && !grab_ && out.contact.in_contact && out.contact.triangle >= 0) {
+    const HapticBody& body = surface.bodies[out.contact.body_id];
+    const Triangle& corners = body.triangles[static_cast<std::size_t>(out.contact.triangle)];
+    int nearest = 0;
+    out.contact.barycentric.maxCoeff(&nearest);
+    grab_ = Grab{out.contact.body_id, corners[nearest]};
+  }
+  if (grab_ && (grab_->body >= surface.bodies.size() ||
+                grab_->vertex >= surface.bodies[grab_->body].to.size())) {
+    grab_.reset();
+  }
+
+  if (grab_) {
+    out.grabbing = true;
+    out.grabbed_body = grab_->body;
+    out.grabbed_vertex = grab_->vertex;
+    out.contact.force = grab_force(surface, device);
+    const Triangle vertex{grab_->vertex, grab_->vertex, grab_->vertex};
+    reactions.add(key_, grab_->body, vertex, Vec3(1, 0, 0), -out.contact.force);
+  } else if (out.contact.in_contact && out.contact.triangle >= 0) {
+    const HapticBody& body = surface.bodies[out.contact.body_id];
+    reactions.add(key_, out.contact.body_id,
+                  body.triangles[static_cast<std::size_t>(out.contact.triangle)],
+                  out.contact.barycentric, -out.contact.force);
+  } else {
+    reactions.add_free(key_);
+  }
+  // the finger takes room: vertices cannot move into the inner half of the proxy's sphere, so
+  // a cloth pressed hard wraps around it instead of folding into it; the outer half is left to
+  // the god-object, which must touch the surface first to feel it (a grabbed vertex hangs
+  // inside the sphere, so there is none while grabbing)
+  std::optional<Collider> sphere;
+  if (!grab_ && settings_.radius > 0) {
+    sphere = Collider{};
+    sphere->shape = Collider::Shape::kSphere;
+    sphere->center = out.contact.proxy;
+    sphere->radius = 0.5 * settings_.radius;
+    sphere->friction = settings_.dynamic_friction;
+  }
+  reactions.set_sphere(key_, sphere);
+  return out;
+}
+
+}  // namespace felt
