@@ -84,6 +84,11 @@ ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec
     sphere->friction = settings_.dynamic_friction;
   }
   reactions.set_sphere(key_, sphere);
+  std::optional<GrabSpring> spring;
+  if (grab_) {
+    spring = GrabSpring{grab_->body, grab_->vertex, device, settings_.stiffness, settings_.damping};
+  }
+  reactions.set_grab(key_, spring);
   return out;
 }
 

@@ -34,6 +34,11 @@ void ReactionAccumulator::set_sphere(std::uint64_t proxy_key, std::optional<Coll
   reactions_[proxy_key].sphere = sphere;
 }
 
+void ReactionAccumulator::set_grab(std::uint64_t proxy_key, std::optional<GrabSpring> grab) {
+  std::lock_guard lock(mutex_);
+  reactions_[proxy_key].grab = grab;
+}
+
 void ReactionAccumulator::forget(std::uint64_t proxy_key) {
   std::lock_guard lock(mutex_);
   const auto it = reactions_.find(proxy_key);
@@ -43,6 +48,10 @@ void ReactionAccumulator::forget(std::uint64_t proxy_key) {
 void ReactionAccumulator::apply_and_clear(World& world) {
   std::lock_guard lock(mutex_);
   spheres_.clear();
+  for (const auto& [body, particle] : anchored_) {
+    if (ClothBody* cloth = world.cloth(body)) cloth->remove_anchor(particle);
+  }
+  anchored_.clear();
   for (auto it = reactions_.begin(); it != reactions_.end();) {
     ProxyReaction& reaction = it->second;
     if (reaction.sphere && !reaction.closed) spheres_.push_back(*reaction.sphere);
@@ -52,6 +61,17 @@ void ReactionAccumulator::apply_and_clear(World& world) {
       for (ParticleForce& pf : reaction.held) pf.force *= weight;
       reaction.forces.clear();
       reaction.samples = 0;
+    }
+    ClothBody* grabbed = nullptr;
+    if (reaction.grab && !reaction.closed && reaction.grab->body_id < world.body_count()) {
+      grabbed = world.cloth(reaction.grab->body_id);
+    }
+    if (grabbed && reaction.grab->vertex < grabbed->model().particle_count()) {
+      const GrabSpring& g = *reaction.grab;
+      grabbed->set_anchor({g.vertex, g.target, g.stiffness, g.damping});
+      anchored_.emplace_back(g.body_id, g.vertex);
+      it = std::next(it);
+      continue;  // the anchor is the reaction
     }
     for (const ParticleForce& pf : reaction.held) {
       // ids come from a snapshot, so check them against the world they are applied to

@@ -10,11 +10,21 @@
 #include <mutex>
 #include <optional>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "core/world.hpp"
 
 namespace felt {
+
+/// A grabbed vertex tied to the device by a damped spring.
+struct GrabSpring {
+  std::uint32_t body_id = 0;
+  std::uint32_t vertex = 0;
+  Vec3 target = Vec3::Zero();  ///< the device
+  Real stiffness = 0;          ///< N/m
+  Real damping = 0;            ///< N·s/m
+};
 
 class ReactionAccumulator {
  public:
@@ -28,6 +38,12 @@ class ReactionAccumulator {
   /// Where proxy `proxy_key`'s sphere is now (null: it takes no room, e.g. while grabbing):
   /// for the next step, bodies collide with it as with a scene collider.
   void set_sphere(std::uint64_t proxy_key, std::optional<Collider> sphere);
+
+  /// What proxy `proxy_key` holds now (null: nothing). A grabbed cloth particle gets the
+  /// spring as an anchor inside the cloth's force model for the next step, integrated with the
+  /// cloth's own forces (stable for a light particle at any step), instead of the proxy's
+  /// reaction force held over the step; a grabbed solid vertex gets the reaction force.
+  void set_grab(std::uint64_t proxy_key, std::optional<GrabSpring> grab);
 
   /// Drops a closed proxy after the next step has applied what it pushed last.
   void forget(std::uint64_t proxy_key);
@@ -48,6 +64,7 @@ class ReactionAccumulator {
     std::uint32_t samples = 0;
     std::vector<ParticleForce> held;  ///< the mean applied at the last step
     std::optional<Collider> sphere;
+    std::optional<GrabSpring> grab;
     bool closed = false;
   };
   // bounds the memory a proxy can pin between two steps
@@ -56,6 +73,8 @@ class ReactionAccumulator {
   std::mutex mutex_;
   std::unordered_map<std::uint64_t, ProxyReaction> reactions_;
   std::vector<Collider> spheres_;  ///< scratch for apply_and_clear
+  /// (body, particle) of the anchors the last apply_and_clear set, removed by the next
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> anchored_;
 };
 
 }  // namespace felt
