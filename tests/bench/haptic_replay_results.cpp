@@ -30,12 +30,12 @@
 #include <utility>
 #include <vector>
 
-#include "core/cloth_grid.hpp"
 #include "core/god_object.hpp"
 #include "core/haptic_recording.hpp"
 #include "core/surface_normals.hpp"
 #include "core/triangle_query.hpp"
 #include "core/world.hpp"
+#include "falling_cloth.hpp"
 #include "study_output.hpp"
 
 namespace felt {
@@ -127,22 +127,9 @@ struct FrozenCloth {
 /// Pinned at the two corners of one edge, falling from horizontal (triangle_query_bench's
 /// cloth, but for the drag): after 0.3 s it hangs curved and sheared, nowhere flat.
 FrozenCloth fall_and_freeze(std::uint32_t side) {
-  GridClothSpec spec;
-  spec.nx = spec.ny = side;
-  spec.total_mass = 0.5;
-  spec.plane = GridClothSpec::Plane::kXZ;
-  ClothParams params;  // the default scene's springs
-  params.spring(SpringKind::kStructural) = {true, 200, 0.05};
-  params.spring(SpringKind::kShear) = {true, 50, 0.02};
-  params.spring(SpringKind::kBend) = {true, 5, 0.005};
   // drag per particle in proportion to its mass (0.005 N·s/m on the 10 × 10 cloth): a fixed
   // drag per particle would hold a fine cloth's light particles nearly still
-  params.drag = 1.0 * spec.total_mass / (side * side);
-  ClothBody body("cloth", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
-                 make_integrator("implicit_euler"));
-  for (std::uint32_t p : grid_pin_indices(spec, GridPinPreset::kTopCorners)) body.pin(p);
-  World world(WorldSettings{Vec3(0, -9.81, 0), kPhysicsStep, 100, 6, 2});
-  world.add_body(std::move(body));
+  World world = bench::falling_cloth(side, 1.0 * 0.5 / (side * side), kPhysicsStep);
   const World& view = world;
   FrozenCloth out;
   out.side = side;

@@ -24,11 +24,11 @@
 #include <utility>
 #include <vector>
 
-#include "core/cloth_grid.hpp"
 #include "core/triangle_bvh.hpp"
 #include "core/triangle_hash.hpp"
 #include "core/triangle_query.hpp"
 #include "core/world.hpp"
+#include "falling_cloth.hpp"
 
 namespace felt {
 namespace {
@@ -63,21 +63,7 @@ struct Recording {
 };
 
 Recording record_falling_cloth(std::uint32_t n, int steps) {
-  GridClothSpec spec;
-  spec.nx = spec.ny = n;
-  spec.total_mass = 0.5;
-  spec.plane = GridClothSpec::Plane::kXZ;
-  ClothParams params;  // the default scene's cloth
-  params.spring(SpringKind::kStructural) = {true, 200, 0.05};
-  params.spring(SpringKind::kShear) = {true, 50, 0.02};
-  params.spring(SpringKind::kBend) = {true, 5, 0.005};
-  params.drag = 0.005;
-  // implicit Euler: stable at 1 ms for every size up to 100 × 100
-  ClothBody body("cloth", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
-                 make_integrator("implicit_euler"));
-  for (std::uint32_t p : grid_pin_indices(spec, GridPinPreset::kTopCorners)) body.pin(p);
-  World world(WorldSettings{Vec3(0, -9.81, 0), kTimeStep, 100, 6, 2});
-  world.add_body(std::move(body));
+  World world = bench::falling_cloth(n, 0.005, kTimeStep);
   const World& view = world;
   Recording out;
   out.n = n;
