@@ -438,6 +438,9 @@ void GodObject::gather(const HapticSurface& surface, const Aabb& region) {
     if (stamps.size() != body.triangles.size()) stamps.assign(body.triangles.size(), 0);
     collected_.clear();
     body.query->collect(region, collected_);
+    // in index order whatever the structure, so that every structure feeds the same triangles
+    // in the same order and a replay against another structure is bit for bit the same
+    std::sort(collected_.begin(), collected_.end());
     const std::size_t vertices = std::min(body.from.size(), body.to.size());
     for (const std::uint32_t t : collected_) {
       if (t >= body.triangles.size() || stamps[t] == epoch_) continue;  // gathered already
