@@ -56,39 +56,37 @@ ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec
     grab_.reset();
   }
 
+  ProxySample sample;
   if (grab_) {
     out.grabbing = true;
     out.grabbed_body = grab_->body;
     out.grabbed_vertex = grab_->vertex;
     out.contact.force = grab_force(surface, device);
-    const Triangle vertex{grab_->vertex, grab_->vertex, grab_->vertex};
-    reactions.add(key_, grab_->body, vertex, Vec3(1, 0, 0), -out.contact.force);
-  } else if (out.contact.in_contact && out.contact.triangle >= 0) {
-    const HapticBody& body = surface.bodies[out.contact.body_id];
-    reactions.add(key_, out.contact.body_id,
-                  body.triangles[static_cast<std::size_t>(out.contact.triangle)],
-                  out.contact.barycentric, -out.contact.force);
+    sample.push =
+        ProxySample::Push{grab_->body, Triangle{grab_->vertex, grab_->vertex, grab_->vertex},
+                          Vec3(1, 0, 0), -out.contact.force};
+    sample.grab =
+        GrabSpring{grab_->body, grab_->vertex, device, settings_.stiffness, settings_.damping};
   } else {
-    reactions.add_free(key_);
+    if (out.contact.in_contact && out.contact.triangle >= 0) {
+      const HapticBody& body = surface.bodies[out.contact.body_id];
+      sample.push = ProxySample::Push{
+          out.contact.body_id, body.triangles[static_cast<std::size_t>(out.contact.triangle)],
+          out.contact.barycentric, -out.contact.force};
+    }
+    // the finger takes room: vertices cannot move into the inner half of the proxy's sphere,
+    // so a cloth pressed hard wraps around it instead of folding into it; the outer half is
+    // left to the god-object, which must touch the surface first to feel it (a grabbed vertex
+    // hangs inside the sphere, so there is none while grabbing)
+    if (settings_.radius > 0) {
+      Collider& sphere = sample.sphere.emplace();
+      sphere.shape = Collider::Shape::kSphere;
+      sphere.center = out.contact.proxy;
+      sphere.radius = 0.5 * settings_.radius;
+      sphere.friction = settings_.dynamic_friction;
+    }
   }
-  // the finger takes room: vertices cannot move into the inner half of the proxy's sphere, so
-  // a cloth pressed hard wraps around it instead of folding into it; the outer half is left to
-  // the god-object, which must touch the surface first to feel it (a grabbed vertex hangs
-  // inside the sphere, so there is none while grabbing)
-  std::optional<Collider> sphere;
-  if (!grab_ && settings_.radius > 0) {
-    sphere = Collider{};
-    sphere->shape = Collider::Shape::kSphere;
-    sphere->center = out.contact.proxy;
-    sphere->radius = 0.5 * settings_.radius;
-    sphere->friction = settings_.dynamic_friction;
-  }
-  reactions.set_sphere(key_, sphere);
-  std::optional<GrabSpring> spring;
-  if (grab_) {
-    spring = GrabSpring{grab_->body, grab_->vertex, device, settings_.stiffness, settings_.damping};
-  }
-  reactions.set_grab(key_, spring);
+  reactions.record(key_, sample);
   return out;
 }
 

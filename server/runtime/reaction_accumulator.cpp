@@ -2,41 +2,29 @@
 
 namespace felt {
 
-void ReactionAccumulator::add(std::uint64_t proxy_key, std::uint32_t body_id,
-                              const Triangle& corners, const Vec3& barycentric, const Vec3& force) {
+void ReactionAccumulator::record(std::uint64_t proxy_key, const ProxySample& sample) {
   std::lock_guard lock(mutex_);
   ProxyReaction& reaction = reactions_[proxy_key];
   ++reaction.samples;
+  reaction.sphere = sample.sphere;
+  reaction.grab = sample.grab;
+  if (!sample.push) return;
+  const ProxySample::Push& push = *sample.push;
   for (int corner = 0; corner < 3; ++corner) {
-    const std::uint32_t particle = corners[corner];
-    const Vec3 share = barycentric[corner] * force;
+    const std::uint32_t particle = push.corners[corner];
+    const Vec3 share = push.barycentric[corner] * push.force;
     bool merged = false;
     for (ParticleForce& pf : reaction.forces) {
-      if (pf.body_id == body_id && pf.particle == particle) {
+      if (pf.body_id == push.body_id && pf.particle == particle) {
         pf.force += share;
         merged = true;
         break;
       }
     }
     if (!merged && reaction.forces.size() < kMaxParticlesPerProxy) {
-      reaction.forces.push_back({body_id, particle, share});
+      reaction.forces.push_back({push.body_id, particle, share});
     }
   }
-}
-
-void ReactionAccumulator::add_free(std::uint64_t proxy_key) {
-  std::lock_guard lock(mutex_);
-  ++reactions_[proxy_key].samples;
-}
-
-void ReactionAccumulator::set_sphere(std::uint64_t proxy_key, std::optional<Collider> sphere) {
-  std::lock_guard lock(mutex_);
-  reactions_[proxy_key].sphere = sphere;
-}
-
-void ReactionAccumulator::set_grab(std::uint64_t proxy_key, std::optional<GrabSpring> grab) {
-  std::lock_guard lock(mutex_);
-  reactions_[proxy_key].grab = grab;
 }
 
 void ReactionAccumulator::forget(std::uint64_t proxy_key) {

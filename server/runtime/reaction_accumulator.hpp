@@ -26,24 +26,31 @@ struct GrabSpring {
   Real damping = 0;            ///< N·s/m
 };
 
+/// What one proxy update leaves on the bodies.
+struct ProxySample {
+  /// a push of `force` onto the triangle with particles `corners` of body `body_id`, at the
+  /// point with barycentric coordinates `barycentric`
+  struct Push {
+    std::uint32_t body_id = 0;
+    Triangle corners{};
+    Vec3 barycentric = Vec3::Zero();
+    Vec3 force = Vec3::Zero();
+  };
+  std::optional<Push> push;  ///< null: the update touched nothing (it counts as zero)
+  /// where the proxy's sphere is now (null: it takes no room, e.g. while grabbing): for the
+  /// next step, bodies collide with it as with a scene collider
+  std::optional<Collider> sphere;
+  /// what the proxy holds now (null: nothing). A grabbed cloth particle gets the spring as an
+  /// anchor inside the cloth's force model for the next step, integrated with the cloth's own
+  /// forces (stable for a light particle at any step), instead of the push held over the
+  /// step; a grabbed solid vertex gets the push.
+  std::optional<GrabSpring> grab;
+};
+
 class ReactionAccumulator {
  public:
-  /// Records that proxy `proxy_key` pushes `force` onto the triangle with particles `corners`
-  /// of body `body_id`, at the point with barycentric coordinates `barycentric`.
-  void add(std::uint64_t proxy_key, std::uint32_t body_id, const Triangle& corners,
-           const Vec3& barycentric, const Vec3& force);
-  /// Records an update of proxy `proxy_key` that touched nothing.
-  void add_free(std::uint64_t proxy_key);
-
-  /// Where proxy `proxy_key`'s sphere is now (null: it takes no room, e.g. while grabbing):
-  /// for the next step, bodies collide with it as with a scene collider.
-  void set_sphere(std::uint64_t proxy_key, std::optional<Collider> sphere);
-
-  /// What proxy `proxy_key` holds now (null: nothing). A grabbed cloth particle gets the
-  /// spring as an anchor inside the cloth's force model for the next step, integrated with the
-  /// cloth's own forces (stable for a light particle at any step), instead of the proxy's
-  /// reaction force held over the step; a grabbed solid vertex gets the reaction force.
-  void set_grab(std::uint64_t proxy_key, std::optional<GrabSpring> grab);
+  /// Records an update of proxy `proxy_key` (one lock: this is on the haptic path).
+  void record(std::uint64_t proxy_key, const ProxySample& sample);
 
   /// Drops a closed proxy after the next step has applied what it pushed last.
   void forget(std::uint64_t proxy_key);
