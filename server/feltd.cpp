@@ -1,5 +1,6 @@
 // feltd: the Felt daemon (`serve`) and the headless batch runner (`run`).
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -26,7 +27,7 @@ struct ServeOptions {
   std::string scene_dir = "scenes";
   std::vector<std::string> scenes;
   bool status = false;
-  std::string token;
+  felt::net::ServerOptions limits;
 };
 
 struct RunOptions {
@@ -67,15 +68,24 @@ int serve(const ServeOptions& options) {
   }
   felt::SceneRegistry scenes;
   felt::net::ServerContext context{
-      scenes, felt::SceneDirectory(options.scene_dir), {}, FELT_VERSION};
-  context.options.token = options.token;
+      scenes, felt::SceneDirectory(options.scene_dir), options.limits, FELT_VERSION};
   for (const std::string& file : options.scenes) {
-    auto scene = felt::load_scene_file(file, scene_options(options.scene_dir));
+    auto document = felt::read_scene_json(file);
+    auto scene = document ? felt::load_scene(*document, scene_options(options.scene_dir))
+                          : std::unexpected(document.error());
     if (!scene) {
       std::cerr << "feltd: " << file << ": " << scene.error().what() << "\n";
       return 2;
     }
-    auto runner = std::make_shared<felt::SceneRunner>(std::move(*scene));
+    // the server's own scenes are shared by everyone in them and stay while nobody is
+    auto runner = std::make_shared<felt::SceneRunner>(
+        std::move(*scene), felt::SceneAccess{0, true, true},
+        [document = std::move(*document), load_options = scene_options(options.scene_dir)] {
+          return felt::load_scene(document, load_options);
+        },
+        felt::SceneLimits{options.limits.max_bodies_per_scene,
+                          std::max<std::uint64_t>(options.limits.max_particles_per_scene,
+                                                  4'000'000)});
     runner->start();
     const SceneId id = scenes.add(std::move(runner));
     if (context.default_scene == 0) context.default_scene = id;
@@ -126,8 +136,10 @@ int serve(const ServeOptions& options) {
   signals.async_wait([&](const boost::system::error_code& ec, int) {
     if (ec) return;
     status_timer.cancel();
-    server.shutdown();
+    // each scene finishes its step, then every client hears that the server stops and its
+    // connection closes once what is queued for it is written
     scenes.stop_all();
+    server.shutdown();
     drain(std::chrono::steady_clock::now() + std::chrono::seconds(2));
   });
   io.run();
@@ -293,7 +305,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   ServeOptions serve_options;
-  if (const char* token = std::getenv("FELT_TOKEN")) serve_options.token = token;
+  felt::net::ServerOptions& limits = serve_options.limits;
+  if (const char* token = std::getenv("FELT_TOKEN")) limits.token = token;
   CLI::App* serve_cmd = app.add_subcommand("serve", "Serve scenes over TCP (protocol felt.v1)");
   serve_cmd
       ->add_option("--listen", serve_options.listen, "HOST:PORT to listen on; port 0 picks one")
@@ -307,8 +320,43 @@ int main(int argc, char** argv) {
                    "Scene file to load at start; the first is the one new clients join")
       ->check(CLI::ExistingFile);
   serve_cmd->add_flag("--status", serve_options.status, "Print a status line every second");
-  serve_cmd->add_option("--token", serve_options.token,
+  serve_cmd->add_option("--token", limits.token,
                         "Shared secret every Hello must carry (default: $FELT_TOKEN)");
+  serve_cmd->add_option("--max-clients", limits.max_clients, "Connections served at once")
+      ->check(CLI::Range(1, 100'000))
+      ->capture_default_str();
+  serve_cmd->add_option("--max-scenes", limits.max_scenes, "Scenes running at once")
+      ->check(CLI::Range(1, 10'000))
+      ->capture_default_str();
+  serve_cmd->add_option("--max-bodies", limits.max_bodies_per_scene, "Bodies per scene")
+      ->check(CLI::Range(1, 65'000))
+      ->capture_default_str();
+  serve_cmd
+      ->add_option("--max-particles", limits.max_particles_per_scene,
+                   "Particles per scene a client loads or builds")
+      ->check(CLI::Range(1, 100'000'000))
+      ->capture_default_str();
+  serve_cmd->add_option("--max-proxies", limits.max_proxies_per_session, "Open proxies per client")
+      ->check(CLI::Range(1, 10'000))
+      ->capture_default_str();
+  serve_cmd
+      ->add_option("--max-requests-in-flight", limits.max_requests_in_flight,
+                   "Requests per client still being worked on (loads, steps, saves)")
+      ->check(CLI::Range(1, 10'000))
+      ->capture_default_str();
+  serve_cmd
+      ->add_option("--max-frame-bytes", limits.max_inbound_frame_bytes,
+                   "Largest message a client may send, in bytes")
+      ->check(CLI::Range(1024, 1 << 30))
+      ->capture_default_str();
+  serve_cmd
+      ->add_option("--max-reply-backlog", limits.max_queued_reply_bytes,
+                   "Unread reply bytes after which a client is disconnected")
+      ->check(CLI::Range(64 * 1024, 1 << 30))
+      ->capture_default_str();
+  serve_cmd->add_option("--max-frame-rate", limits.max_frame_rate_hz, "Frames per second, per subscription")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
 
   RunOptions run_options;
   CLI::App* run_cmd = app.add_subcommand("run", "Step a scene headless, without a network");

@@ -32,6 +32,14 @@ struct HapticSurface {
   /// where between the snapshots the surface is rendered: 0 = from, 1 = to
   Real alpha = 1;
 
+  /// The body with id `body_id`, or null.
+  const HapticBody* find(std::uint32_t body_id) const {
+    for (const HapticBody& body : bodies) {
+      if (body.body_id == body_id) return &body;
+    }
+    return nullptr;
+  }
+
   Vec3 vertex(const HapticBody& body, std::uint32_t i) const {
     return (1 - alpha) * body.from[i] + alpha * body.to[i];
   }

@@ -33,6 +33,18 @@ std::uint32_t SolidSystem::add_body(SolidBody body) {
   return static_cast<std::uint32_t>(bodies_.size() - 1);
 }
 
+void SolidSystem::remove_body(std::uint32_t index) {
+  FELT_CHECK(index < bodies_.size());
+  bodies_.erase(bodies_.begin() + index);
+  detector_ = SolidCollisionDetector();
+  penetration_ = PenetrationDepthEstimator();
+  contact_surface_ = ContactSurface();
+  collisions_ = CollisionSet();
+  contacts_.clear();
+  saved_.clear();
+  if (!bodies_.empty()) detector_.set_cell_size(mean_rest_edge_length(bodies_));
+}
+
 void SolidSystem::set_settings(const SolidStepSettings& settings) {
   FELT_CHECK(settings.max_step > 0);
   FELT_CHECK(settings.contact_iterations >= 0);

@@ -49,6 +49,9 @@ class SolidSystem {
 
   /// Adds a body and returns its index.
   std::uint32_t add_body(SolidBody body);
+  /// Removes the body at `index`; the later ones move down by one. The contact caches start
+  /// over, as they hold positions in the list of bodies.
+  void remove_body(std::uint32_t index);
   std::vector<SolidBody>& bodies() { return bodies_; }
   const std::vector<SolidBody>& bodies() const { return bodies_; }
 

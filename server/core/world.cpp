@@ -3,58 +3,166 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/check.hpp"
+
 namespace felt {
 
 World::World(WorldSettings settings, SolidStepSettings solid_settings)
     : settings_(settings), solids_(solid_settings) {}
 
-std::uint32_t World::add_body(ClothBody body) {
+namespace {
+
+constexpr std::uint32_t kSlotBits = 16;
+constexpr std::uint32_t kSlotMask = (1u << kSlotBits) - 1;
+// a slot whose generation reaches this is retired, so that no id is ever reused
+constexpr std::uint16_t kLastGeneration = 0xffff;
+
+std::uint32_t slot_of(BodyId id) {
+  return id & kSlotMask;
+}
+std::uint16_t generation_of(BodyId id) {
+  return static_cast<std::uint16_t>(id >> kSlotBits);
+}
+
+}  // namespace
+
+BodyId World::allocate(BodyRef ref) {
+  auto free = std::find_if(slots_.begin(), slots_.end(), [](const Slot& s) {
+    return !s.live && s.generation < kLastGeneration;
+  });
+  if (free == slots_.end()) {
+    FELT_CHECK(slots_.size() <= kSlotMask);
+    free = slots_.insert(slots_.end(), Slot{});
+  } else {
+    // every free slot held a body before: the new one is the next generation
+    ++free->generation;
+  }
+  free->live = true;
+  free->ref = ref;
+  ++live_;
+  return (BodyId{free->generation} << kSlotBits) | static_cast<BodyId>(free - slots_.begin());
+}
+
+BodyId World::add_body(ClothBody body) {
   body.set_gravity(settings_.gravity);
   cloths_.push_back(std::move(body));
   self_collision_.emplace_back();
   energy_valid_ = false;
-  refs_.push_back({BodyRef::Kind::kCloth, static_cast<std::uint32_t>(cloths_.size() - 1)});
-  cloth_ids_.push_back(static_cast<std::uint32_t>(refs_.size() - 1));
+  cloth_ids_.push_back(
+      allocate({BodyRef::Kind::kCloth, static_cast<std::uint32_t>(cloths_.size() - 1)}));
   return cloth_ids_.back();
 }
 
-std::uint32_t World::add_body(SolidBody body) {
-  refs_.push_back({BodyRef::Kind::kSolid, solids_.add_body(std::move(body))});
-  return static_cast<std::uint32_t>(refs_.size() - 1);
+BodyId World::add_body(SolidBody body) {
+  solid_ids_.push_back(allocate({BodyRef::Kind::kSolid, solids_.add_body(std::move(body))}));
+  return solid_ids_.back();
 }
 
-ClothBody* World::cloth(std::uint32_t id) {
-  const BodyRef& ref = body_ref(id);
-  return ref.kind == BodyRef::Kind::kCloth ? &cloths()[ref.index] : nullptr;
+BodyId World::add_collider(const Collider& collider) {
+  colliders_.push_back(collider);
+  collider_ids_.push_back(
+      allocate({BodyRef::Kind::kCollider, static_cast<std::uint32_t>(colliders_.size() - 1)}));
+  return collider_ids_.back();
 }
 
-const ClothBody* World::cloth(std::uint32_t id) const {
-  const BodyRef& ref = body_ref(id);
-  return ref.kind == BodyRef::Kind::kCloth ? &cloths_[ref.index] : nullptr;
+void World::shift_indices(BodyRef::Kind kind, std::uint32_t index) {
+  for (Slot& slot : slots_) {
+    if (slot.live && slot.ref.kind == kind && slot.ref.index > index) --slot.ref.index;
+  }
 }
 
-std::size_t World::surface_vertex_count(std::uint32_t id) const {
-  const BodyRef& ref = body_ref(id);
-  if (ref.kind == BodyRef::Kind::kCloth) return cloths_[ref.index].model().particle_count();
-  const SolidBody& solid = solids_.bodies()[ref.index];
-  const EmbeddedSurface* surface = solid.embedded_surface();
-  return surface ? surface->vertex_count() : solid.node_count();
+void World::remove_body(BodyId id) {
+  const BodyRef ref = body_ref(id);
+  const auto at = [&](auto& v) { return v.begin() + ref.index; };
+  switch (ref.kind) {
+    case BodyRef::Kind::kCloth:
+      cloths_.erase(at(cloths_));
+      self_collision_.erase(at(self_collision_));
+      cloth_ids_.erase(at(cloth_ids_));
+      energy_valid_ = false;
+      break;
+    case BodyRef::Kind::kSolid:
+      solids_.remove_body(ref.index);
+      solid_ids_.erase(at(solid_ids_));
+      break;
+    case BodyRef::Kind::kCollider:
+      colliders_.erase(at(colliders_));
+      collider_ids_.erase(at(collider_ids_));
+      break;
+  }
+  shift_indices(ref.kind, ref.index);
+  slots_[slot_of(id)].live = false;
+  --live_;
 }
 
-void World::add_surface_force(std::uint32_t id, std::uint32_t vertex, const Vec3& force) {
-  const BodyRef& ref = body_ref(id);
-  if (ref.kind == BodyRef::Kind::kCloth) {
-    cloths_[ref.index].add_external_force(vertex, force);
+bool World::contains(BodyId id) const {
+  const std::uint32_t slot = slot_of(id);
+  return slot < slots_.size() && slots_[slot].live && slots_[slot].generation == generation_of(id);
+}
+
+std::vector<BodyId> World::body_ids() const {
+  std::vector<BodyId> ids;
+  ids.reserve(live_);
+  for (std::uint32_t s = 0; s < slots_.size(); ++s) {
+    if (slots_[s].live) ids.push_back((BodyId{slots_[s].generation} << kSlotBits) | s);
+  }
+  return ids;
+}
+
+const BodyRef& World::body_ref(BodyId id) const {
+  FELT_CHECK(contains(id));
+  return slots_[slot_of(id)].ref;
+}
+
+ClothBody* World::cloth(BodyId id) {
+  if (!contains(id) || body_ref(id).kind != BodyRef::Kind::kCloth) return nullptr;
+  return &cloths()[body_ref(id).index];
+}
+
+const ClothBody* World::cloth(BodyId id) const {
+  if (!contains(id) || body_ref(id).kind != BodyRef::Kind::kCloth) return nullptr;
+  return &cloths_[body_ref(id).index];
+}
+
+SolidBody* World::solid(BodyId id) {
+  if (!contains(id) || body_ref(id).kind != BodyRef::Kind::kSolid) return nullptr;
+  return &solids_.bodies()[body_ref(id).index];
+}
+
+const SolidBody* World::solid(BodyId id) const {
+  if (!contains(id) || body_ref(id).kind != BodyRef::Kind::kSolid) return nullptr;
+  return &solids_.bodies()[body_ref(id).index];
+}
+
+std::size_t World::surface_vertex_count(BodyId id) const {
+  if (const ClothBody* body = cloth(id)) return body->model().particle_count();
+  const SolidBody* solid_body = solid(id);
+  if (!solid_body) return 0;
+  const EmbeddedSurface* surface = solid_body->embedded_surface();
+  return surface ? surface->vertex_count() : solid_body->node_count();
+}
+
+void World::add_surface_force(BodyId id, std::uint32_t vertex, const Vec3& force) {
+  if (ClothBody* body = cloth(id)) {
+    body->add_external_force(vertex, force);
     return;
   }
-  SolidBody& solid = solids_.bodies()[ref.index];
-  const EmbeddedSurface* surface = solid.embedded_surface();
+  SolidBody* solid_body = solid(id);
+  FELT_CHECK(solid_body != nullptr);
+  const EmbeddedSurface* surface = solid_body->embedded_surface();
   if (!surface) {
-    solid.add_external_force(vertex, force);
+    solid_body->add_external_force(vertex, force);
     return;
   }
-  const Tetrahedron& tet = solid.rest().tets[surface->tet[vertex]];
-  for (int c = 0; c < 4; ++c) solid.add_external_force(tet[c], surface->weights[vertex][c] * force);
+  const Tetrahedron& tet = solid_body->rest().tets[surface->tet[vertex]];
+  for (int c = 0; c < 4; ++c) {
+    solid_body->add_external_force(tet[c], surface->weights[vertex][c] * force);
+  }
+}
+
+void World::set_step_count(std::uint64_t steps) {
+  step_count_ = steps;
+  time_ = static_cast<Real>(step_count_) * settings_.time_step;
 }
 
 StepReport World::step() {
@@ -102,9 +210,8 @@ StepReport World::step() {
     if (solid.unrecoverable) {
       // the solids step together, so all of them were rolled back
       report.flags |= kStepUnrecoverable;
-      for (std::uint32_t id = 0; id < refs_.size(); ++id) {
-        if (refs_[id].kind == BodyRef::Kind::kSolid) report.unrecoverable_bodies.push_back(id);
-      }
+      report.unrecoverable_bodies.insert(report.unrecoverable_bodies.end(), solid_ids_.begin(),
+                                         solid_ids_.end());
     }
     report.max_substeps = std::max(report.max_substeps, solid.substeps);
   }

@@ -24,9 +24,15 @@ struct WorldSettings {
   Real max_energy_growth = 2;
 };
 
-/// What a body id names: a cloth or a soft solid, and its index among its kind.
+/// Names a body of a world: its slot in the low 16 bits and the slot's generation in the high
+/// 16 (Box2D's b2BodyId), so the id of a removed body never names a later one. The bodies a
+/// world starts with take slots 0, 1, 2, ... at generation 0: their ids are their indices.
+using BodyId = std::uint32_t;
+
+/// What a body id names: a cloth, a soft solid or a static collider, and its index among its
+/// kind.
 struct BodyRef {
-  enum class Kind : std::uint8_t { kCloth, kSolid };
+  enum class Kind : std::uint8_t { kCloth, kSolid, kCollider };
   Kind kind = Kind::kCloth;
   std::uint32_t index = 0;
 };
@@ -50,21 +56,31 @@ class World {
 
   const WorldSettings& settings() const { return settings_; }
 
-  /// Adds a cloth or a solid and returns its body id. Ids count every body in the order added,
-  /// whatever its kind.
-  std::uint32_t add_body(ClothBody body);
-  std::uint32_t add_body(SolidBody body);
-  std::size_t body_count() const { return refs_.size(); }
-  const BodyRef& body_ref(std::uint32_t id) const { return refs_.at(id); }
-  /// The cloth with body id `id`, or null when it is a solid.
-  ClothBody* cloth(std::uint32_t id);
-  const ClothBody* cloth(std::uint32_t id) const;
+  /// Adds a cloth, a solid or a static collider and returns its body id: the lowest free slot.
+  BodyId add_body(ClothBody body);
+  BodyId add_body(SolidBody body);
+  BodyId add_collider(const Collider& collider);
+  /// Removes a body; its id is never valid again.
+  void remove_body(BodyId id);
+  bool contains(BodyId id) const;
+  /// Live bodies, colliders included.
+  std::size_t body_count() const { return live_; }
+  /// The ids of the live bodies, in slot order.
+  std::vector<BodyId> body_ids() const;
+  /// What `id` names; `id` must be live.
+  const BodyRef& body_ref(BodyId id) const;
+  /// The cloth with body id `id`, or null when it is not a live cloth.
+  ClothBody* cloth(BodyId id);
+  const ClothBody* cloth(BodyId id) const;
+  /// The solid with body id `id`, or null when it is not a live solid.
+  SolidBody* solid(BodyId id);
+  const SolidBody* solid(BodyId id) const;
   /// Applies `force` at vertex `vertex` of what clients see of body `id` (the cloth's particle;
   /// for a solid, its fine surface vertex spread over the nodes that carry it) for the next step.
-  void add_surface_force(std::uint32_t id, std::uint32_t vertex, const Vec3& force);
+  void add_surface_force(BodyId id, std::uint32_t vertex, const Vec3& force);
   /// How many vertices clients see of body `id`: a cloth's particles, a solid's fine surface
-  /// vertices or, without one, its nodes.
-  std::size_t surface_vertex_count(std::uint32_t id) const;
+  /// vertices or, without one, its nodes; 0 for a collider.
+  std::size_t surface_vertex_count(BodyId id) const;
 
   /// Cloths by index among cloths. Mutable access: anything that edits a cloth through it makes
   /// the next step recompute the energies its health check starts from.
@@ -75,7 +91,6 @@ class World {
   const std::vector<ClothBody>& cloths() const { return cloths_; }
   SolidSystem& solids() { return solids_; }
   const SolidSystem& solids() const { return solids_; }
-  void add_collider(const Collider& collider) { colliders_.push_back(collider); }
   const std::vector<Collider>& colliders() const { return colliders_; }
   /// Colliders for the next step only, besides the scene's: the haptic proxies' spheres, so
   /// that a cloth wraps around a finger pressing into it instead of folding into the sphere.
@@ -91,6 +106,8 @@ class World {
 
   Real time() const { return time_; }
   std::uint64_t step_count() const { return step_count_; }
+  /// Sets the clock to `steps` steps (restoring a saved state); time is steps · time_step.
+  void set_step_count(std::uint64_t steps);
 
  private:
   /// Steps one body over [time_, time_ + h] in `substeps` equal parts; false when unhealthy.
@@ -99,13 +116,25 @@ class World {
   bool try_step(std::size_t cloth, int substeps, Real& energy);
   bool healthy(const ClothBody& body, Real& energy) const;
 
+  struct Slot {
+    std::uint16_t generation = 0;
+    bool live = false;
+    BodyRef ref;
+  };
+  BodyId allocate(BodyRef ref);
+  /// After element `index` of a kind's vector was erased, the later ones moved down by one.
+  void shift_indices(BodyRef::Kind kind, std::uint32_t index);
+
   WorldSettings settings_;
   std::vector<ClothBody> cloths_;
-  std::vector<std::uint32_t> cloth_ids_;            ///< body id of each cloth
+  std::vector<BodyId> cloth_ids_;                   ///< body id of each cloth
   std::vector<ClothSelfCollision> self_collision_;  ///< per cloth; keeps its hash between steps
   SolidSystem solids_;
-  std::vector<BodyRef> refs_;
+  std::vector<BodyId> solid_ids_;  ///< body id of each solid
   std::vector<Collider> colliders_;
+  std::vector<BodyId> collider_ids_;  ///< body id of each collider
+  std::vector<Slot> slots_;
+  std::size_t live_ = 0;
   std::vector<Collider> moving_colliders_;
   std::vector<Collider> step_colliders_;  ///< the scene's and the moving ones, for one step
   /// kinetic + elastic energy of each body after the last step, reused as the next step's

@@ -40,12 +40,16 @@ void Server::accept() {
         if (!ec) {
           socket.set_option(tcp::no_delay(true));  // a ForceUpdate must not wait for Nagle
           auto session = std::make_shared<Session>(std::move(socket), context_);
-          {
+          if (context_.clients.load() >= context_.options.max_clients) {
+            session->reject(felt::v1::ERROR_CODE_LIMIT_EXCEEDED,
+                            "the server already serves " +
+                                std::to_string(context_.options.max_clients) + " clients");
+          } else {
             std::lock_guard lock(sessions_mutex_);
             std::erase_if(sessions_, [](const std::weak_ptr<Session>& s) { return s.expired(); });
             sessions_.push_back(session);
+            session->start();
           }
-          session->start();
         }
         accept();
       });
@@ -56,7 +60,7 @@ void Server::shutdown() {
   acceptor_.close(ignored);
   std::lock_guard lock(sessions_mutex_);
   for (const auto& weak : sessions_) {
-    if (auto session = weak.lock()) session->close();
+    if (auto session = weak.lock()) session->close_gracefully();
   }
 }
 

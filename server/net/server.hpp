@@ -23,7 +23,8 @@ class Server {
   /// Binds and starts accepting; port 0 picks a free port. Returns the bound endpoint.
   std::expected<boost::asio::ip::tcp::endpoint, std::string> listen(const std::string& host,
                                                                     std::uint16_t port);
-  /// Stops accepting and closes every session (client_count() falls to 0 as they finish).
+  /// Stops accepting, tells every session's client that the server stops and closes the
+  /// session once what it has queued is written (client_count() falls to 0 as they finish).
   void shutdown();
   /// Sessions whose connection is still open.
   std::size_t client_count();

@@ -1,15 +1,20 @@
 #pragma once
-// What every session of a server shares: the scenes, the scene directory and the limits.
+// What every session of a server shares: the scenes, the scene directory, the limits and the
+// worker that loads scenes and bodies off the network thread.
 
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <string>
+
+#include <boost/asio/thread_pool.hpp>
 
 #include "runtime/scene_registry.hpp"
 #include "scene/scene_directory.hpp"
 
 namespace felt::net {
 
+/// The server's limits (feltd serve --help names a flag for each).
 struct ServerOptions {
   std::size_t max_inbound_frame_bytes = 4u << 20;  ///< a larger length prefix closes the connection
   std::size_t max_queued_reply_bytes = 8u << 20;   ///< a client that lets more pile up is dropped
@@ -17,8 +22,11 @@ struct ServerOptions {
   double min_frame_rate_hz = 0.1;
   double max_frame_rate_hz = 240;
   std::size_t max_proxies_per_session = 16;
-  std::size_t max_scenes = 32;  ///< scenes loaded at once, preloaded ones included
-  std::size_t max_particles_per_scene = 250'000;
+  std::size_t max_scenes = 32;  ///< scenes loaded at once, the server's own included
+  std::size_t max_clients = 64;
+  std::size_t max_requests_in_flight = 16;  ///< per client: loads, steps, saves not yet answered
+  std::size_t max_bodies_per_scene = 256;
+  std::size_t max_particles_per_scene = 250'000;  ///< in scenes clients load or build
   std::string token;  ///< when not empty, Hello must carry it
 };
 
@@ -28,7 +36,12 @@ struct ServerContext {
   ServerOptions options;
   std::string server_version;
   SceneId default_scene = 0;  ///< joined by every new session; 0 when there is none
-  std::atomic<std::uint64_t> next_session_id{1};
+  std::atomic<std::uint32_t> next_client_id{1};
+  std::atomic<std::uint32_t> clients{0};  ///< sessions with an open connection
+  /// scene and body files are read and built here, so that a big one does not hold up the
+  /// network thread that answers every client's haptic updates
+  boost::asio::thread_pool loader{1};
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 };
 
 }  // namespace felt::net

@@ -1,7 +1,7 @@
 #include "net/session.hpp"
 
 #include "net/dispatcher.hpp"
-#include "net/frame_builder.hpp"
+#include "net/wire_convert.hpp"
 #include "wire/message_codec.hpp"
 
 namespace felt::net {
@@ -9,30 +9,108 @@ namespace felt::net {
 namespace asio = boost::asio;
 namespace v1 = felt::v1;
 
+namespace {
+
+// requests handled per turn of a session before the others get theirs (fairness on the one
+// network thread: a client flooding updates waits for its next turn, not everyone else)
+constexpr int kRequestsPerTurn = 32;
+
+}  // namespace
+
+/// How a scene reaches the session: held by the session while it is in the scene, known to
+/// the scene only weakly, so a session that left hears nothing more.
+class Session::Membership : public SceneListener {
+ public:
+  Membership(std::weak_ptr<Session> session, SceneId scene)
+      : session_(std::move(session)), scene_(scene) {}
+  void on_scene_event(const SceneEvent& event) override {
+    if (auto session = session_.lock()) {
+      asio::post(session->socket_.get_executor(),
+                 [session, scene = scene_, event] { session->on_scene_event(scene, event); });
+    }
+  }
+
+ private:
+  std::weak_ptr<Session> session_;
+  SceneId scene_;
+};
+
+PendingReply::PendingReply(std::shared_ptr<Session> session, std::uint64_t request_id)
+    : session_(session), request_id_(request_id) {
+  ++session->in_flight_;
+}
+
+PendingReply::~PendingReply() {
+  // every deferred request is answered; one dropped unanswered is a server bug, reported as such
+  if (!sent_) fail(v1::ERROR_CODE_INTERNAL, "the request was dropped");
+}
+
+void PendingReply::send(v1::ServerMessage message) {
+  if (sent_.exchange(true)) return;
+  auto session = session_.lock();
+  if (!session) return;
+  message.set_request_id(request_id_);
+  asio::post(session->socket_.get_executor(), [session, message = std::move(message)] {
+    --session->in_flight_;
+    session->send(message);
+  });
+}
+
+void PendingReply::fail(v1::ErrorCode code, std::string message) {
+  v1::ServerMessage reply;
+  fill_error(request_id_, code, message, reply);
+  send(std::move(reply));
+}
+
 Session::Session(asio::ip::tcp::socket socket, ServerContext& context)
     : socket_(std::move(socket)),
       context_(context),
-      id_(context.next_session_id.fetch_add(1)),
+      id_(context.next_client_id.fetch_add(1)),
       decoder_(context.options.max_inbound_frame_bytes),
       frame_timer_(socket_.get_executor()) {}
 
 Session::~Session() {
   leave_scene();
+  if (counted_) --context_.clients;
 }
 
 void Session::start() {
+  counted_ = true;
+  ++context_.clients;
   asio::dispatch(socket_.get_executor(), [self = shared_from_this()] {
-    if (self->context_.default_scene != 0) {
-      if (auto scene = self->context_.scenes.find(self->context_.default_scene)) {
-        self->join(self->context_.default_scene, std::move(scene));
-      }
-    }
+    if (self->context_.default_scene != 0) self->join(self->context_.default_scene);
     self->read();
   });
 }
 
+void Session::reject(v1::ErrorCode code, const std::string& message) {
+  asio::dispatch(socket_.get_executor(), [self = shared_from_this(), code, message] {
+    self->send_error(0, code, message);
+    self->closing_ = true;
+    self->write_next();
+  });
+}
+
+void Session::post(std::function<void()> task) {
+  asio::post(socket_.get_executor(), std::move(task));
+}
+
 void Session::close() {
   asio::post(socket_.get_executor(), [self = shared_from_this()] { self->shutdown(); });
+}
+
+void Session::close_gracefully() {
+  asio::post(socket_.get_executor(), [self = shared_from_this()] {
+    if (self->closed_) return;
+    v1::ServerMessage goodbye;
+    v1::SceneEvent& event = *goodbye.mutable_event();
+    event.set_scene_id(self->scene_id_);
+    event.set_kind(v1::EVENT_KIND_SERVER_SHUTDOWN);
+    self->send(goodbye);
+    self->closing_ = true;
+    self->frame_pending_ = false;
+    self->write_next();
+  });
 }
 
 void Session::shutdown() {
@@ -43,6 +121,10 @@ void Session::shutdown() {
   socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
   socket_.close(ignored);
   leave_scene();
+  if (counted_) {
+    counted_ = false;
+    --context_.clients;
+  }
 }
 
 void Session::read() {
@@ -58,8 +140,17 @@ void Session::on_read(const boost::system::error_code& ec, std::size_t bytes) {
     shutdown();
     return;
   }
+  counters_.bytes_received += bytes;
   decoder_.feed(std::span<const std::uint8_t>(read_buffer_.data(), bytes));
-  while (!closing_) {
+  process();
+}
+
+void Session::process() {
+  for (int handled = 0; !closing_ && !closed_; ++handled) {
+    if (handled == kRequestsPerTurn) {
+      asio::post(socket_.get_executor(), [self = shared_from_this()] { self->process(); });
+      return;
+    }
     const wire::DecodeResult frame = decoder_.next();
     if (frame.status == wire::DecodeStatus::kNeedMore) break;
     if (frame.status == wire::DecodeStatus::kTooLarge) {
@@ -76,8 +167,10 @@ void Session::on_read(const boost::system::error_code& ec, std::size_t bytes) {
       closing_ = true;
       break;
     }
+    ++counters_.requests;
     dispatch(*this, message);
   }
+  if (closed_) return;
   if (closing_) {
     if (!writing_) shutdown();
     return;
@@ -86,7 +179,7 @@ void Session::on_read(const boost::system::error_code& ec, std::size_t bytes) {
 }
 
 void Session::send(const v1::ServerMessage& message) {
-  if (!socket_.is_open()) return;
+  if (closed_ || !socket_.is_open()) return;
   std::string bytes;
   wire::append_message(bytes, message);
   queued_reply_bytes_ += bytes.size();
@@ -94,6 +187,7 @@ void Session::send(const v1::ServerMessage& message) {
   if (queued_reply_bytes_ > context_.options.max_queued_reply_bytes) {
     // the client does not read its replies; dropping them would break the protocol
     replies_.clear();
+    queued_reply_bytes_ = 0;
     shutdown();
     return;
   }
@@ -102,29 +196,40 @@ void Session::send(const v1::ServerMessage& message) {
 
 void Session::send_error(std::uint64_t request_id, v1::ErrorCode code, const std::string& text) {
   v1::ServerMessage reply;
-  reply.set_request_id(request_id);
-  v1::Error* error = reply.mutable_error();
-  error->set_code(code);
-  error->set_message(text);
-  error->set_request_id(request_id);
+  fill_error(request_id, code, text, reply);
   send(reply);
 }
 
+std::shared_ptr<PendingReply> Session::defer(std::uint64_t request_id) {
+  if (in_flight_.load() >= context_.options.max_requests_in_flight) return nullptr;
+  return std::make_shared<PendingReply>(shared_from_this(), request_id);
+}
+
+void Session::set_greeted(std::string client_name) {
+  greeted_ = true;
+  client_name_ = std::move(client_name);
+}
+
 void Session::write_next() {
-  if (writing_ || !socket_.is_open()) return;
+  if (writing_ || closed_ || !socket_.is_open()) return;
   if (!replies_.empty()) {
-    in_flight_ = std::move(replies_.front());
+    in_flight_bytes_ = std::move(replies_.front());
     replies_.pop_front();
-    queued_reply_bytes_ -= in_flight_.size();
+    queued_reply_bytes_ -= in_flight_bytes_.size();
+    in_flight_is_frame_ = false;
   } else if (frame_pending_ && !closing_) {
-    in_flight_.swap(pending_frame_);
+    in_flight_bytes_.swap(pending_frame_);
     frame_pending_ = false;
+    in_flight_is_frame_ = true;
+    frames_.written();
+    ++counters_.frames_sent;
   } else {
     if (closing_) shutdown();
     return;
   }
   writing_ = true;
-  asio::async_write(socket_, asio::buffer(in_flight_),
+  counters_.bytes_sent += in_flight_bytes_.size();
+  asio::async_write(socket_, asio::buffer(in_flight_bytes_),
                     [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
                       self->writing_ = false;
                       if (ec) {
@@ -135,103 +240,142 @@ void Session::write_next() {
                     });
 }
 
-void Session::join(SceneId id, std::shared_ptr<SceneRunner> scene) {
+bool Session::join(SceneId id) {
+  auto membership = std::make_shared<Membership>(weak_from_this(), id);
+  auto scene = context_.scenes.join(id, {id_, client_name_, membership});
+  if (!scene) return false;
   leave_scene();
+  scene_id_ = id;
+  scene_ = std::move(scene);
+  membership_ = std::move(membership);
   // a frame of the previous scene that has not gone out yet is dropped
   frame_pending_ = false;
   pending_frame_.clear();
-  pending_topology_.clear();
-  scene_id_ = id;
-  scene_ = std::move(scene);
-  topology_sent_.assign(scene_ ? scene_->bodies().size() : 0, false);
-  last_frame_step_ = ~std::uint64_t{0};
-  // events from before the session joined are history it does not need
-  const auto snapshot = scene_ ? scene_->latest() : nullptr;
-  last_event_sequence_ =
-      snapshot && snapshot->events ? snapshot->events->back().sequence : std::uint64_t{0};
+  frames_.restart();
+  SceneEvent joined;
+  joined.kind = SceneEvent::Kind::kClientJoined;
+  joined.client = id_;
+  joined.client_name = client_name_;
+  scene_->members().broadcast(std::move(joined));
+  return true;
 }
 
 void Session::leave_scene() {
+  if (!scene_) return;
+  close_proxies();
+  SceneEvent left;
+  left.kind = SceneEvent::Kind::kClientLeft;
+  left.client = id_;
+  left.client_name = client_name_;
+  scene_->members().broadcast(std::move(left));
+  membership_.reset();
+  scene_.reset();
+  // a scene a client loaded lives as long as some session is in it
+  context_.scenes.leave(scene_id_, id_);
+  scene_id_ = 0;
+  frame_pending_ = false;
+  pending_frame_.clear();
+  frames_.restart();
+}
+
+void Session::on_scene_event(SceneId scene, const SceneEvent& event) {
+  if (closed_ || scene != scene_id_) return;  // from a scene the session has left
+  v1::ServerMessage message;
+  fill_event(scene, event, *message.mutable_event());
+  send(message);
+  if (event.kind == SceneEvent::Kind::kDestroyed) {
+    // the scene is gone from the registry already: only let go of it
+    close_proxies();
+    membership_.reset();
+    scene_.reset();
+    scene_id_ = 0;
+    frame_pending_ = false;
+    frames_.restart();
+  }
+}
+
+std::uint64_t Session::key_of(std::uint32_t proxy_id) const {
+  return (std::uint64_t{id_} << 32) | proxy_id;
+}
+
+void Session::close_proxies() {
   if (scene_) {
     for (const auto& [id, proxy] : proxies_) scene_->close_proxy(proxy);
   }
   proxies_.clear();
-  scene_.reset();
-  // a scene a client loaded lives as long as some session is in it
-  if (scene_id_ != 0 && scene_id_ != context_.default_scene) {
-    context_.scenes.remove_if_unused(scene_id_);
-  }
-  scene_id_ = 0;
 }
 
-std::uint64_t Session::key_of(std::uint32_t proxy_id) const {
-  return (id_ << 32) | proxy_id;
-}
-
-HapticProxy* Session::open_proxy(std::uint32_t proxy_id) {
+HapticProxy* Session::proxy(std::uint32_t proxy_id) {
   const auto it = proxies_.find(proxy_id);
   if (it != proxies_.end()) return &it->second;
   if (proxies_.size() >= context_.options.max_proxies_per_session) return nullptr;
   return &proxies_.emplace(proxy_id, scene_->open_proxy(key_of(proxy_id))).first->second;
 }
 
-void Session::subscribe_frames(double rate_hz, bool normals) {
-  stream_normals_ = normals;
-  frame_period_ = std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / rate_hz));
-  std::fill(topology_sent_.begin(), topology_sent_.end(), false);
-  last_frame_step_ = ~std::uint64_t{0};
-  if (!streaming_) {
-    streaming_ = true;
+std::uint32_t Session::open_proxy(const ProxySettings& settings) {
+  if (proxies_.size() >= context_.options.max_proxies_per_session) return 0;
+  std::uint32_t id = 1;
+  while (proxies_.contains(id)) ++id;
+  proxies_.emplace(id, scene_->open_proxy(key_of(id), settings));
+  return id;
+}
+
+bool Session::close_proxy(std::uint32_t proxy_id) {
+  const auto it = proxies_.find(proxy_id);
+  if (it == proxies_.end()) return false;
+  scene_->close_proxy(it->second);
+  proxies_.erase(it);
+  return true;
+}
+
+void Session::subscribe_frames(const FrameOptions& options) {
+  frames_.start(options);
+  frame_pending_ = false;
+  pending_frame_.clear();
+  if (!timer_running_) {
+    timer_running_ = true;
     on_frame_tick();
   }
 }
 
-void Session::send_new_events(const SceneSnapshot& snapshot) {
-  if (!snapshot.events) return;
-  for (const SceneEvent& event : *snapshot.events) {
-    if (event.sequence <= last_event_sequence_) continue;
-    v1::ServerMessage message;
-    v1::SceneEvent& out = *message.mutable_event();
-    out.set_scene_id(scene_id_);
-    out.set_sequence(event.sequence);
-    out.set_kind(v1::EVENT_KIND_UNRECOVERABLE_STEP);
-    out.set_step(event.step);
-    out.set_sim_time(event.sim_time);
-    out.set_count(event.unrecoverable_steps);
-    for (std::uint32_t body : event.bodies) out.add_body_ids(body);
-    send(message);
-    last_event_sequence_ = event.sequence;
-  }
+void Session::unsubscribe_frames() {
+  frames_.stop();
+  frame_pending_ = false;
+  pending_frame_.clear();
+  frame_timer_.cancel();
+  timer_running_ = false;
 }
 
 void Session::schedule_frame() {
-  frame_timer_.expires_after(frame_period_);
+  frame_timer_.expires_after(
+      std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / frames_.options().rate_hz)));
   frame_timer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
-    if (!ec) self->on_frame_tick();
+    if (!ec && self->timer_running_) self->on_frame_tick();
   });
 }
 
 void Session::on_frame_tick() {
-  if (closed_) return;
+  if (closed_ || !frames_.active()) {
+    timer_running_ = false;
+    return;
+  }
   if (scene_) {
     const auto snapshot = scene_->latest();
-    send_new_events(*snapshot);
-    if (snapshot->step != last_frame_step_) {
+    if (frames_.has_new(*snapshot)) {
       std::uint64_t skipped = 0;
       if (frame_pending_) {
         // the client has not taken the previous frame: it is dropped, and so are the triangles
         // it carried, which the next frame must carry instead
         skipped = pending_frame_skipped_ + 1;
-        for (std::uint32_t body : pending_topology_) topology_sent_[body] = false;
+        frames_.dropped();
+        ++counters_.frames_skipped;
       }
       v1::ServerMessage message;
-      pending_topology_ = build_frame(*snapshot, scene_id_, stream_normals_, topology_sent_,
-                                      skipped, *message.mutable_frame());
+      frames_.build(*snapshot, scene_id_, skipped, *message.mutable_frame());
       pending_frame_.clear();
       wire::append_message(pending_frame_, message);
       frame_pending_ = true;
       pending_frame_skipped_ = skipped;
-      last_frame_step_ = snapshot->step;
       write_next();
     }
   }

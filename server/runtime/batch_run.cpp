@@ -195,8 +195,9 @@ BatchRunStats run_batch(Scene& scene, std::uint64_t steps, const BatchHaptics& h
     each_stage(stats.solids.mean_ms, stats.solids.mean_ms, [n](Real& total, Real) { total /= n; });
   }
   stats.nonfinite = stats.unrecoverable_steps > 0;
-  for (std::uint32_t id = 0; id < world.body_count(); ++id) {
+  for (BodyId id : world.body_ids()) {
     const BodyRef& ref = world.body_ref(id);
+    if (ref.kind == BodyRef::Kind::kCollider) continue;
     if (ref.kind == BodyRef::Kind::kCloth) {
       const ClothBody& body = world.cloths()[ref.index];
       stats.nonfinite =

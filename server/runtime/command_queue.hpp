@@ -1,6 +1,7 @@
 #pragma once
 // Changes to a scene from other threads, applied by the physics thread between steps, never
-// during one.
+// during one. A command that will never run (its scene stopped) is cancelled instead, so that
+// whoever waits for it hears so.
 
 #include <functional>
 #include <mutex>
@@ -14,25 +15,59 @@ using SceneCommand = std::function<void(Scene&)>;
 
 class CommandQueue {
  public:
-  void push(SceneCommand command) {
-    std::lock_guard lock(mutex_);
-    pending_.push_back(std::move(command));
+  /// Queues `run`; `cancel` is called instead if the queue is closed before it runs. Returns
+  /// false (and calls `cancel`) when the queue is already closed.
+  bool push(SceneCommand run, std::function<void()> cancel = {}) {
+    {
+      std::lock_guard lock(mutex_);
+      if (!closed_) {
+        pending_.push_back({std::move(run), std::move(cancel)});
+        return true;
+      }
+    }
+    if (cancel) cancel();
+    return false;
   }
 
-  /// Runs every queued command on `scene`, in the order they were pushed.
-  void apply_all(Scene& scene) {
+  /// Runs every queued command on `scene`, in the order they were pushed. True if there was any.
+  bool apply_all(Scene& scene) {
     {
       std::lock_guard lock(mutex_);
       running_.swap(pending_);
     }
-    for (SceneCommand& command : running_) command(scene);
+    const bool any = !running_.empty();
+    for (Command& command : running_) command.run(scene);
     running_.clear();
+    return any;
+  }
+
+  bool empty() const {
+    std::lock_guard lock(mutex_);
+    return pending_.empty();
+  }
+
+  /// Cancels what is queued and every later push.
+  void close() {
+    std::vector<Command> cancelled;
+    {
+      std::lock_guard lock(mutex_);
+      closed_ = true;
+      cancelled.swap(pending_);
+    }
+    for (Command& command : cancelled) {
+      if (command.cancel) command.cancel();
+    }
   }
 
  private:
-  std::mutex mutex_;
-  std::vector<SceneCommand> pending_;
-  std::vector<SceneCommand> running_;  ///< only touched by the physics thread
+  struct Command {
+    SceneCommand run;
+    std::function<void()> cancel;
+  };
+  mutable std::mutex mutex_;
+  bool closed_ = false;
+  std::vector<Command> pending_;
+  std::vector<Command> running_;  ///< only touched by the physics thread
 };
 
 }  // namespace felt

@@ -17,7 +17,7 @@ HapticSurface HapticFrame::surface_at(Real alpha) const {
   surface.bodies.reserve(to->bodies.size());
   for (std::size_t b = 0; b < to->bodies.size(); ++b) {
     const BodySnapshot& newer = to->bodies[b];
-    const BodySnapshot& older = from->bodies[b];
+    const BodySnapshot& older = *this->older[b];
     HapticBody& body = surface.bodies.emplace_back();
     body.body_id = newer.body_id;
     body.triangles = newer.triangles();
@@ -31,28 +31,50 @@ HapticSurface HapticFrame::surface_at(Real alpha) const {
   return surface;
 }
 
+namespace {
+
+/// The body `body` of a snapshot, if `in` has it with the same surface.
+const BodySnapshot* same_body(const SceneSnapshot& in, const BodySnapshot& body, std::size_t hint) {
+  const BodySnapshot* found = in.find(body.body_id, hint);
+  return found && found->surface == body.surface ? found : nullptr;
+}
+
+std::size_t index_in(const SceneSnapshot& snapshot, const BodySnapshot* body) {
+  return static_cast<std::size_t>(body - snapshot.bodies.data());
+}
+
+}  // namespace
+
 std::shared_ptr<HapticFrame> make_haptic_frame(std::shared_ptr<const SceneSnapshot> to,
                                                const HapticFrame* previous,
                                                std::shared_ptr<HapticFrame> recycled,
                                                TriangleQueryKind kind,
                                                SteadyClock::time_point now) {
   auto frame = recycled ? std::move(recycled) : std::make_shared<HapticFrame>();
-  // bodies keep their ids and surfaces for a scene's life; a changed count starts over
-  const bool continues = previous && previous->to->bodies.size() == to->bodies.size();
-  frame->from = continues ? previous->to : to;
+  const auto& bodies = to->bodies;
+  // a recycled frame's structures are refitted for the same bodies instead of copied
+  std::vector<std::unique_ptr<TriangleQuery>> queries(bodies.size());
+  if (frame->to) {
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      if (const BodySnapshot* old = same_body(*frame->to, bodies[b], b)) {
+        queries[b] = std::move(frame->queries[index_in(*frame->to, old)]);
+      }
+    }
+  }
+  frame->queries = std::move(queries);
+  frame->from = previous ? previous->to : to;
   frame->to = std::move(to);
   frame->published = now;
-  frame->interval = continues ? now - previous->published : SteadyClock::duration{0};
-
-  const auto& bodies = frame->to->bodies;
-  if (frame->queries.size() != bodies.size()) frame->queries.clear();
-  frame->queries.resize(bodies.size());
+  frame->interval = previous ? now - previous->published : SteadyClock::duration{0};
+  frame->older.assign(bodies.size(), nullptr);
   frame->max_displacement.assign(bodies.size(), 0);
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    const std::vector<Vec3>& older = frame->from->bodies[b].positions;
+    const BodySnapshot* before = previous ? same_body(*previous->to, bodies[b], b) : nullptr;
+    frame->older[b] = before ? before : &bodies[b];
+    const std::vector<Vec3>& older = frame->older[b]->positions;
     const std::vector<Vec3>& newer = bodies[b].positions;
     std::unique_ptr<TriangleQuery>& query = frame->queries[b];
-    if (!query && continues) query = previous->queries[b]->clone();
+    if (!query && before) query = previous->queries[index_in(*previous->to, before)]->clone();
     if (!query) query = make_triangle_query(kind, bodies[b].triangles(), newer);
     query->refit(older, newer);
     Real largest_sq = 0;

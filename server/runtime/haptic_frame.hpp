@@ -19,9 +19,12 @@ using SteadyClock = std::chrono::steady_clock;
 struct HapticFrame {
   std::shared_ptr<const SceneSnapshot> from;  ///< the older snapshot (= to for the first frame)
   std::shared_ptr<const SceneSnapshot> to;
-  /// per body, bounds over [from, to]; written only while the frame is being made
+  /// per body of `to`, where it was in `from`: the same body with the same surface, or itself
+  /// (still) when it is new (bodies come and go; a reset scene has new surfaces under old ids)
+  std::vector<const BodySnapshot*> older;
+  /// per body of `to`, bounds over [older, to]; written only while the frame is being made
   std::vector<std::unique_ptr<TriangleQuery>> queries;
-  std::vector<Real> max_displacement;  ///< per body, the largest vertex move from `from` to `to`
+  std::vector<Real> max_displacement;  ///< per body, the largest vertex move from older to `to`
   SteadyClock::time_point published;   ///< when `to` became the latest snapshot
   /// wall time from the publication of `from` to that of `to`: the render goes from `from` to
   /// `to` over the same time after `to` is published (Zhuang & Canny: one step behind)

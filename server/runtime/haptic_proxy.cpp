@@ -19,7 +19,7 @@ Vec3 HapticProxy::starting_point(const HapticSurface& surface, const Vec3& devic
 }
 
 Vec3 HapticProxy::grab_force(const HapticSurface& surface, const Vec3& device) const {
-  const HapticBody& body = surface.bodies[grab_->body];
+  const HapticBody& body = *surface.find(grab_->body);
   Vec3 force = settings_.stiffness * (surface.vertex(body, grab_->vertex) - device);
   const Real magnitude = force.norm();
   if (magnitude > settings_.max_force) force *= settings_.max_force / magnitude;
@@ -43,16 +43,17 @@ ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec
   const bool button_down = (buttons & kGrabButton) != 0;
   if (!button_down) grab_.reset();
   // a grab starts when the button is down and the proxy touches something: pressing first and
-  // then touching grabs too; a vertex that has left the body (it shrank) ends the grab
+  // then touching grabs too
   if (button_down && !grab_ && out.contact.in_contact && out.contact.triangle >= 0) {
-    const HapticBody& body = surface.bodies[out.contact.body_id];
+    const HapticBody& body = *surface.find(out.contact.body_id);
     const Triangle& corners = body.triangles[static_cast<std::size_t>(out.contact.triangle)];
     int nearest = 0;
     out.contact.barycentric.maxCoeff(&nearest);
     grab_ = Grab{out.contact.body_id, corners[nearest]};
   }
-  if (grab_ && (grab_->body >= surface.bodies.size() ||
-                grab_->vertex >= surface.bodies[grab_->body].to.size())) {
+  // a grabbed body that is gone (removed, or the scene reset) ends the grab too
+  if (grab_ && (!surface.find(grab_->body) ||
+                grab_->vertex >= surface.find(grab_->body)->to.size())) {
     grab_.reset();
   }
 
@@ -69,7 +70,7 @@ ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec
         GrabSpring{grab_->body, grab_->vertex, device, settings_.stiffness, settings_.damping};
   } else {
     if (out.contact.in_contact && out.contact.triangle >= 0) {
-      const HapticBody& body = surface.bodies[out.contact.body_id];
+      const HapticBody& body = *surface.find(out.contact.body_id);
       sample.push = ProxySample::Push{
           out.contact.body_id, body.triangles[static_cast<std::size_t>(out.contact.triangle)],
           out.contact.barycentric, -out.contact.force};

@@ -51,9 +51,7 @@ void ReactionAccumulator::apply_and_clear(World& world) {
       reaction.samples = 0;
     }
     ClothBody* grabbed = nullptr;
-    if (reaction.grab && !reaction.closed && reaction.grab->body_id < world.body_count()) {
-      grabbed = world.cloth(reaction.grab->body_id);
-    }
+    if (reaction.grab && !reaction.closed) grabbed = world.cloth(reaction.grab->body_id);
     if (grabbed && reaction.grab->vertex < grabbed->model().particle_count()) {
       const GrabSpring& g = *reaction.grab;
       grabbed->set_anchor({g.vertex, g.target, g.stiffness, g.damping});
@@ -63,7 +61,7 @@ void ReactionAccumulator::apply_and_clear(World& world) {
     }
     for (const ParticleForce& pf : reaction.held) {
       // ids come from a snapshot, so check them against the world they are applied to
-      if (pf.body_id >= world.body_count()) continue;
+      if (!world.contains(pf.body_id)) continue;
       if (pf.particle >= world.surface_vertex_count(pf.body_id)) continue;
       world.add_surface_force(pf.body_id, pf.particle, pf.force);
     }

@@ -1,20 +1,42 @@
 #pragma once
-// Things that happen in a scene that its clients must hear about, beside the frames.
+// Things that happen in a scene that the clients in it must hear about, beside the frames.
 
 #include <cstdint>
+#include <string>
 #include <vector>
+
+#include "runtime/body_catalog.hpp"
 
 namespace felt {
 
-/// Steps in which some body could not be rescued: it was rolled back to where it was before the
-/// step and brought to rest (core/world.hpp). Coalesced, so an exploding scene reports at most
-/// twice a second rather than every step.
 struct SceneEvent {
+  enum class Kind : std::uint8_t {
+    /// steps in which some body could not be rescued: it was rolled back to where it was before
+    /// the step and brought to rest (core/world.hpp). Coalesced, so an exploding scene reports
+    /// at most twice a second rather than every step.
+    kUnrecoverableStep,
+    kBodyAdded,
+    kBodyRemoved,
+    kBodyChanged,
+    kPaused,
+    kResumed,
+    kReset,
+    kStateRestored,
+    kTimeScale,
+    kDestroyed,
+    kClientJoined,
+    kClientLeft,
+  };
+  Kind kind = Kind::kUnrecoverableStep;
   std::uint64_t sequence = 0;  ///< 1, 2, ... per scene
   std::uint64_t step = 0;      ///< the scene's step count when it was reported
   double sim_time = 0;
-  std::uint64_t unrecoverable_steps = 0;  ///< since the previous event
-  std::vector<std::uint32_t> bodies;      ///< the bodies that failed in the last of those steps
+  std::uint64_t unrecoverable_steps = 0;  ///< kUnrecoverableStep: since the previous event
+  std::vector<BodyId> body_ids;           ///< the bodies concerned
+  std::vector<BodyInfo> bodies;  ///< kBodyAdded: the new body; kReset: every body now
+  ClientId client = 0;           ///< whose request caused it (0: the server)
+  std::string client_name;
+  double time_scale = 1;
 };
 
 }  // namespace felt

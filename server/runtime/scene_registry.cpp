@@ -14,6 +14,12 @@ std::uint32_t generation_of(SceneId id) {
 
 }  // namespace
 
+SceneRegistry::Slot* SceneRegistry::slot(SceneId id) {
+  const std::uint32_t index = index_of(id);
+  if (index >= slots_.size() || slots_[index].generation != generation_of(id)) return nullptr;
+  return slots_[index].runner ? &slots_[index] : nullptr;
+}
+
 SceneId SceneRegistry::add(std::shared_ptr<SceneRunner> runner) {
   std::lock_guard lock(mutex_);
   auto free = std::find_if(slots_.begin(), slots_.end(), [](const Slot& s) { return !s.runner; });
@@ -32,46 +38,58 @@ std::shared_ptr<SceneRunner> SceneRegistry::find(SceneId id) const {
   return slots_[index].runner;
 }
 
+std::shared_ptr<SceneRunner> SceneRegistry::join(SceneId id, SceneMembers::Member member) {
+  std::lock_guard lock(mutex_);
+  Slot* found = slot(id);
+  if (!found) return nullptr;
+  found->runner->members().join(std::move(member));
+  return found->runner;
+}
+
+void SceneRegistry::leave(SceneId id, ClientId client) {
+  std::shared_ptr<SceneRunner> removed;
+  {
+    std::lock_guard lock(mutex_);
+    Slot* found = slot(id);
+    if (!found) return;
+    found->runner->members().leave(client);
+    if (found->runner->members().count() > 0 || found->runner->access().persistent) return;
+    removed = std::move(found->runner);
+  }
+  removed->stop();
+}
+
 bool SceneRegistry::remove(SceneId id) {
   std::shared_ptr<SceneRunner> removed;
   {
     std::lock_guard lock(mutex_);
-    const std::uint32_t index = index_of(id);
-    if (index >= slots_.size() || slots_[index].generation != generation_of(id)) return false;
-    removed = std::move(slots_[index].runner);
+    Slot* found = slot(id);
+    if (!found) return false;
+    removed = std::move(found->runner);
   }
-  if (!removed) return false;
   removed->stop();
   return true;
 }
 
-void SceneRegistry::remove_if_unused(SceneId id) {
-  std::shared_ptr<SceneRunner> removed;
-  {
-    std::lock_guard lock(mutex_);
-    const std::uint32_t index = index_of(id);
-    if (index >= slots_.size() || slots_[index].generation != generation_of(id)) return;
-    if (slots_[index].runner.use_count() != 1) return;
-    removed = std::move(slots_[index].runner);
-  }
-  removed->stop();
-}
-
 void SceneRegistry::stop_all() {
-  std::vector<std::shared_ptr<SceneRunner>> runners;
-  {
-    std::lock_guard lock(mutex_);
-    for (const Slot& slot : slots_) {
-      if (slot.runner) runners.push_back(slot.runner);
-    }
-  }
-  for (const auto& runner : runners) runner->stop();
+  for (const auto& [id, runner] : list()) runner->stop();
 }
 
 std::size_t SceneRegistry::size() const {
   std::lock_guard lock(mutex_);
   return static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(),
                                                 [](const Slot& s) { return s.runner != nullptr; }));
+}
+
+std::vector<std::pair<SceneId, std::shared_ptr<SceneRunner>>> SceneRegistry::list() const {
+  std::lock_guard lock(mutex_);
+  std::vector<std::pair<SceneId, std::shared_ptr<SceneRunner>>> scenes;
+  for (std::uint32_t i = 0; i < slots_.size(); ++i) {
+    if (slots_[i].runner) {
+      scenes.emplace_back((SceneId{slots_[i].generation} << 32) | i, slots_[i].runner);
+    }
+  }
+  return scenes;
 }
 
 }  // namespace felt

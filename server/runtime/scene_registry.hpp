@@ -1,10 +1,11 @@
 #pragma once
 // The live scenes of a server, named by ids that carry a generation so that the id of a
-// removed scene is never mistaken for a later one (Box2D's b2BodyId).
+// removed scene is never mistaken for a later one (Box2D's b2BodyId), and who is in each.
 
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 #include "runtime/scene_runner.hpp"
@@ -20,20 +21,28 @@ class SceneRegistry {
   SceneId add(std::shared_ptr<SceneRunner> runner);
   /// The runner with that id, or nullptr for an unknown or stale id.
   std::shared_ptr<SceneRunner> find(SceneId id) const;
+  /// Adds `member` to scene `id` and returns it (nullptr for an unknown id), under the same
+  /// lock as leave(), so a scene is never removed between being found and being joined.
+  std::shared_ptr<SceneRunner> join(SceneId id, SceneMembers::Member member);
+  /// Takes `client` out of scene `id`; a scene that is not persistent is removed and stopped
+  /// when its last member leaves.
+  void leave(SceneId id, ClientId client);
   /// Removes and stops a scene; false for an unknown id.
   bool remove(SceneId id);
-  /// Removes and stops the scene if nobody but the registry holds it any more (the last session
-  /// left). Sessions only obtain runners through find() or by creating them.
-  void remove_if_unused(SceneId id);
   /// Stops every scene's physics thread (shutdown).
   void stop_all();
   std::size_t size() const;
+  /// Every live scene, in slot order.
+  std::vector<std::pair<SceneId, std::shared_ptr<SceneRunner>>> list() const;
 
  private:
   struct Slot {
     std::uint32_t generation = 0;
     std::shared_ptr<SceneRunner> runner;
   };
+  /// The slot of a live scene `id`, or null; the mutex must be held.
+  Slot* slot(SceneId id);
+
   mutable std::mutex mutex_;
   std::vector<Slot> slots_;
 };

@@ -12,30 +12,44 @@ using Seconds = std::chrono::duration<double>;
 // Lagging further than this behind the wall clock re-synchronises instead of catching up, so a
 // slow scene runs slower than real time rather than stepping in bursts.
 constexpr double kMaxLagSeconds = 0.1;
-// unrecoverable steps are reported at most this often, and this many events are kept
+// unstable steps are reported at most this often
 constexpr double kEventIntervalSeconds = 0.5;
-constexpr std::size_t kKeptEvents = 16;
 // real-time factor and step time are averaged over windows this long
 constexpr double kStatsWindowSeconds = 0.5;
 // haptic frames are made while some proxy was rendered this recently
 constexpr auto kHapticIdle = std::chrono::seconds(1);
 // retired haptic frames kept for reuse: the latest, one a reader may still hold, one free
 constexpr std::size_t kHapticPoolSize = 3;
+// while a paused scene takes requested steps as fast as it can, it publishes this often
+constexpr auto kBurstPublishPeriod = std::chrono::milliseconds(16);
+// a paused scene with nothing to do still wakes this often to keep its statistics fresh
+constexpr auto kIdleWake = std::chrono::milliseconds(100);
+
+RunnerError error(RunnerError::Code code, std::string message) {
+  return RunnerError{code, std::move(message)};
+}
+
+std::size_t visible_particles(const SceneBody& body) {
+  if (const auto* cloth = std::get_if<ClothBody>(&body)) return cloth->model().particle_count();
+  const SolidBody& solid = std::get<SolidBody>(body);
+  return solid.embedded_surface() ? solid.embedded_surface()->vertex_count() : solid.node_count();
+}
 
 }  // namespace
 
-SceneRunner::SceneRunner(Scene scene)
+SceneRunner::SceneRunner(Scene scene, SceneAccess access, SceneReloader reload,
+                         SceneLimits limits)
     : scene_(std::move(scene)),
       name_(scene_.name),
+      access_(access),
+      reload_(std::move(reload)),
+      limits_(limits),
       haptics_(scene_.haptics),
+      time_step_(scene_.world.settings().time_step),
       haptic_structure_(scene_.haptic_structure) {
+  for (BodyId id : scene_.world.body_ids()) owners_.emplace_back(id, access_.owner);
   publish();
-  for (const BodySnapshot& body : latest()->bodies) {
-    const bool cloth = scene_.world.body_ref(body.body_id).kind == BodyRef::Kind::kCloth;
-    bodies_.push_back({body.body_id, body.name, cloth ? "cloth" : "solid",
-                       static_cast<std::uint32_t>(body.positions.size()),
-                       static_cast<std::uint32_t>(body.triangles().size())});
-  }
+  publish_catalog();
   if (!scene_.devices.empty()) {
     // sessions key their proxies by session id (from 1) in the high half: 0 is the servo's
     servo_ = std::make_unique<HapticServo>(
@@ -56,10 +70,270 @@ void SceneRunner::start() {
 
 void SceneRunner::stop() {
   if (servo_) servo_->stop();
-  if (!thread_.joinable()) return;
-  thread_.request_stop();
+  if (thread_.joinable()) {
+    thread_.request_stop();
+    wake_.notify_all();
+    thread_.join();
+  }
+  commands_.close();
+  for (StepRequest& request : step_requests_) {
+    request.done(std::unexpected(error(RunnerError::Code::kCancelled, "the scene was stopped")));
+  }
+  step_requests_.clear();
+}
+
+bool SceneRunner::may_change(ClientId client, const BodyInfo& body) const {
+  return access_.shared || body.owner == client;
+}
+
+bool SceneRunner::may_control(ClientId client) const {
+  return access_.shared || access_.owner == client;
+}
+
+void SceneRunner::post(SceneCommand command, std::function<void()> cancel) {
+  commands_.push(std::move(command), std::move(cancel));
+  // taking the lock orders the push before the physics thread's check of the queue
+  { std::lock_guard lock(wake_mutex_); }
   wake_.notify_all();
-  thread_.join();
+}
+
+template <class T>
+void SceneRunner::request(Completion<T> done, std::function<void(Scene&, Completion<T>&)> run) {
+  auto shared = std::make_shared<Completion<T>>(std::move(done));
+  post([shared, run = std::move(run)](Scene& scene) { run(scene, *shared); },
+       [shared] {
+         (*shared)(std::unexpected(error(RunnerError::Code::kCancelled, "the scene was stopped")));
+       });
+}
+
+SceneEvent SceneRunner::event(SceneEvent::Kind kind, ClientId by) const {
+  SceneEvent e;
+  e.kind = kind;
+  e.client = by;
+  e.step = scene_.world.step_count();
+  e.sim_time = scene_.world.time();
+  e.time_scale = time_scale_;
+  return e;
+}
+
+SceneStatus SceneRunner::status() const {
+  return {scene_.world.step_count(), scene_.world.time(), paused_, time_scale_};
+}
+
+void SceneRunner::pause(ClientId by, Completion<SceneStatus> done) {
+  request<SceneStatus>(std::move(done), [this, by](Scene&, Completion<SceneStatus>& done) {
+    if (!paused_) {
+      paused_ = true;
+      members_.broadcast(event(SceneEvent::Kind::kPaused, by));
+    }
+    done(status());
+  });
+}
+
+void SceneRunner::resume(ClientId by, Completion<SceneStatus> done) {
+  request<SceneStatus>(std::move(done), [this, by](Scene&, Completion<SceneStatus>& done) {
+    if (paused_) {
+      paused_ = false;
+      resync_ = true;
+      members_.broadcast(event(SceneEvent::Kind::kResumed, by));
+    }
+    done(status());
+  });
+}
+
+void SceneRunner::step(ClientId, std::uint32_t steps, Completion<SceneStatus> done) {
+  request<SceneStatus>(std::move(done), [this, steps](Scene& scene, Completion<SceneStatus>& done) {
+    if (!paused_) {
+      done(std::unexpected(
+          error(RunnerError::Code::kWrongState, "the scene is running; pause it first")));
+      return;
+    }
+    if (steps == 0 || steps > kMaxStepsPerRequest) {
+      done(std::unexpected(error(RunnerError::Code::kBadRequest,
+                                 "steps must be 1 to " + std::to_string(kMaxStepsPerRequest))));
+      return;
+    }
+    // requests queue up: each starts where the one before it ends
+    const std::uint64_t from =
+        step_requests_.empty() ? scene.world.step_count() : step_requests_.back().target;
+    step_requests_.push_back({from + steps, std::move(done)});
+  });
+}
+
+void SceneRunner::set_time_scale(ClientId by, double scale, Completion<SceneStatus> done) {
+  request<SceneStatus>(std::move(done), [this, by, scale](Scene&, Completion<SceneStatus>& done) {
+    if (!(scale > 0 && scale <= 100)) {
+      done(std::unexpected(error(RunnerError::Code::kBadRequest, "scale must be in (0, 100]")));
+      return;
+    }
+    time_scale_ = scale;
+    resync_ = true;
+    members_.broadcast(event(SceneEvent::Kind::kTimeScale, by));
+    done(status());
+  });
+}
+
+void SceneRunner::reset(ClientId by, Completion<SceneStatus> done) {
+  request<SceneStatus>(std::move(done), [this, by](Scene& scene, Completion<SceneStatus>& done) {
+    if (!reload_) {
+      done(std::unexpected(error(RunnerError::Code::kWrongState,
+                                 "this scene was built by requests and has no source to reset to")));
+      return;
+    }
+    auto fresh = reload_();
+    if (!fresh) {
+      done(std::unexpected(error(RunnerError::Code::kBadScene, fresh.error().what())));
+      return;
+    }
+    for (StepRequest& pending : step_requests_) {
+      pending.done(std::unexpected(error(RunnerError::Code::kCancelled, "the scene was reset")));
+    }
+    step_requests_.clear();
+    scene.world = std::move(fresh->world);
+    owners_.clear();
+    for (BodyId id : scene.world.body_ids()) owners_.emplace_back(id, access_.owner);
+    timed_forces_.clear();
+    resync_ = true;
+    publish_catalog();
+    SceneEvent e = event(SceneEvent::Kind::kReset, by);
+    e.bodies = bodies()->bodies;
+    members_.broadcast(std::move(e));
+    done(status());
+  });
+}
+
+void SceneRunner::save_state(ClientId, Completion<SavedState> done) {
+  request<SavedState>(std::move(done), [this](Scene& scene, Completion<SavedState>& done) {
+    SavedState saved{next_state_id_++,
+                     std::make_shared<const WorldState>(capture_state(scene.world)),
+                     scene.world.time()};
+    saved_.push_back(saved);
+    if (saved_.size() > kMaxSavedStates) saved_.pop_front();
+    done(std::move(saved));
+  });
+}
+
+void SceneRunner::restore(ClientId by, const WorldState& state, Completion<SceneStatus>& done) {
+  if (auto restored = felt::restore_state(scene_.world, state); !restored) {
+    done(std::unexpected(error(RunnerError::Code::kBadRequest, restored.error())));
+    return;
+  }
+  resync_ = true;
+  members_.broadcast(event(SceneEvent::Kind::kStateRestored, by));
+  done(status());
+}
+
+void SceneRunner::restore_state(ClientId by, std::uint32_t state_id,
+                                Completion<SceneStatus> done) {
+  request<SceneStatus>(std::move(done), [this, by, state_id](Scene&,
+                                                             Completion<SceneStatus>& done) {
+    const auto it = std::find_if(saved_.begin(), saved_.end(),
+                                 [state_id](const SavedState& s) { return s.id == state_id; });
+    if (it == saved_.end()) {
+      done(std::unexpected(error(RunnerError::Code::kUnknownId,
+                                 "no saved state " + std::to_string(state_id) +
+                                     " (a scene keeps its latest " +
+                                     std::to_string(kMaxSavedStates) + ")")));
+      return;
+    }
+    const auto state = it->state;
+    restore(by, *state, done);
+  });
+}
+
+void SceneRunner::restore_state(ClientId by, std::shared_ptr<const WorldState> state,
+                                Completion<SceneStatus> done) {
+  request<SceneStatus>(std::move(done),
+                       [this, by, state = std::move(state)](Scene&, Completion<SceneStatus>& done) {
+                         restore(by, *state, done);
+                       });
+}
+
+void SceneRunner::add_body(ClientId by, SceneBody body, Completion<BodyInfo> done) {
+  auto shared_body = std::make_shared<SceneBody>(std::move(body));
+  request<BodyInfo>(std::move(done), [this, by, shared_body](Scene& scene,
+                                                             Completion<BodyInfo>& done) {
+    const auto catalog = bodies();
+    if (catalog->bodies.size() >= limits_.max_bodies) {
+      done(std::unexpected(error(RunnerError::Code::kLimitExceeded,
+                                 "the scene already has " + std::to_string(limits_.max_bodies) +
+                                     " bodies")));
+      return;
+    }
+    const std::uint64_t particles = visible_particles(*shared_body);
+    if (catalog->particles() + particles > limits_.max_particles) {
+      done(std::unexpected(error(RunnerError::Code::kLimitExceeded,
+                                 std::to_string(particles) + " particles exceed the " +
+                                     std::to_string(limits_.max_particles - catalog->particles()) +
+                                     " the scene's particle limit leaves")));
+      return;
+    }
+    const BodyId id = std::visit(
+        [&](auto&& b) { return scene.world.add_body(std::move(b)); }, std::move(*shared_body));
+    owners_.emplace_back(id, by);
+    publish_catalog();
+    const BodyInfo info = *bodies()->find(id);
+    SceneEvent e = event(SceneEvent::Kind::kBodyAdded, by);
+    e.body_ids = {id};
+    e.bodies = {info};
+    members_.broadcast(std::move(e));
+    done(info);
+  });
+}
+
+void SceneRunner::add_collider(ClientId by, const Collider& collider, Completion<BodyInfo> done) {
+  request<BodyInfo>(std::move(done), [this, by, collider](Scene& scene,
+                                                          Completion<BodyInfo>& done) {
+    if (bodies()->bodies.size() >= limits_.max_bodies) {
+      done(std::unexpected(error(RunnerError::Code::kLimitExceeded,
+                                 "the scene already has " + std::to_string(limits_.max_bodies) +
+                                     " bodies")));
+      return;
+    }
+    const BodyId id = scene.world.add_collider(collider);
+    owners_.emplace_back(id, by);
+    publish_catalog();
+    const BodyInfo info = *bodies()->find(id);
+    SceneEvent e = event(SceneEvent::Kind::kBodyAdded, by);
+    e.body_ids = {id};
+    e.bodies = {info};
+    members_.broadcast(std::move(e));
+    done(info);
+  });
+}
+
+void SceneRunner::remove_body(ClientId by, BodyId body, Completion<BodyId> done) {
+  request<BodyId>(std::move(done), [this, by, body](Scene& scene, Completion<BodyId>& done) {
+    if (!scene.world.contains(body)) {
+      done(std::unexpected(
+          error(RunnerError::Code::kUnknownId, "no body " + std::to_string(body))));
+      return;
+    }
+    scene.world.remove_body(body);
+    std::erase_if(owners_, [body](const auto& owner) { return owner.first == body; });
+    publish_catalog();
+    SceneEvent e = event(SceneEvent::Kind::kBodyRemoved, by);
+    e.body_ids = {body};
+    members_.broadcast(std::move(e));
+    done(body);
+  });
+}
+
+void SceneRunner::change_body(ClientId by, BodyId body, std::function<void(World&)> change) {
+  post([this, by, body, change = std::move(change)](Scene& scene) {
+    if (!scene.world.contains(body)) return;  // removed since the request was checked
+    change(scene.world);
+    SceneEvent e = event(SceneEvent::Kind::kBodyChanged, by);
+    e.body_ids = {body};
+    members_.broadcast(std::move(e));
+  });
+}
+
+void SceneRunner::apply_force(ClientId, BodyId body, std::vector<std::uint32_t> vertices,
+                              const Vec3& force, Real duration) {
+  post([this, body, vertices = std::move(vertices), force, duration](Scene& scene) mutable {
+    timed_forces_.add(body, std::move(vertices), force, scene.world.time() + duration);
+  });
 }
 
 std::vector<HapticRecord> SceneRunner::device_states() const {
@@ -80,11 +354,11 @@ std::shared_ptr<const HapticFrame> SceneRunner::haptic_frame() {
   const SteadyClock::time_point last(
       SteadyClock::duration(last_render_.exchange(now.time_since_epoch().count())));
   auto frame = haptic_.load();
+  const auto snapshot = latest();
   if (frame && now - last < kHapticIdle) return frame;
   // the physics thread may have stopped making frames: start from a still copy of the latest
   std::lock_guard lock(haptic_mutex_);
   frame = haptic_.load();
-  const auto snapshot = latest();
   if (!frame || frame->to != snapshot) {
     frame = make_haptic_frame(snapshot, nullptr, nullptr, haptic_structure_, now);
     haptic_.store(frame);
@@ -118,68 +392,108 @@ RunnerStats SceneRunner::stats() const {
 }
 
 void SceneRunner::publish() {
-  auto snapshot = make_snapshot(scene_.world, latest_.load().get());
-  snapshot->events = events_;
-  latest_.store(std::move(snapshot));
+  latest_.store(make_snapshot(scene_.world, latest_.load().get()));
 }
 
-void SceneRunner::record_event(std::uint64_t unrecoverable_steps,
-                               std::vector<std::uint32_t> bodies) {
-  std::vector<SceneEvent> events = events_ ? *events_ : std::vector<SceneEvent>{};
-  const std::uint64_t sequence = events.empty() ? 1 : events.back().sequence + 1;
-  events.push_back({sequence, scene_.world.step_count(), scene_.world.time(), unrecoverable_steps,
-                    std::move(bodies)});
-  if (events.size() > kKeptEvents) events.erase(events.begin());
-  events_ = std::make_shared<const std::vector<SceneEvent>>(std::move(events));
+void SceneRunner::publish_catalog() {
+  auto catalog = std::make_shared<BodyCatalog>();
+  for (BodyId id : scene_.world.body_ids()) {
+    const auto owner = std::find_if(owners_.begin(), owners_.end(),
+                                    [id](const auto& entry) { return entry.first == id; });
+    catalog->bodies.push_back(
+        describe_body(scene_.world, id, owner == owners_.end() ? 0 : owner->second));
+  }
+  catalog_.store(std::move(catalog));
+}
+
+void SceneRunner::step_once() {
+  World& world = scene_.world;
+  timed_forces_.apply(world);
+  reactions_.apply_and_clear(world);
+  const StepReport report = world.step();
+  if (report.flags & kStepRescued) ++window_rescued_;
+  if (report.flags & kStepUnrecoverable) {
+    ++window_unrecoverable_;
+    ++unreported_;
+    failed_bodies_ = report.unrecoverable_bodies;
+  }
+}
+
+void SceneRunner::report_unrecoverable(bool force) {
+  if (unreported_ == 0) return;
+  const auto now = Clock::now();
+  if (!force && Seconds(now - last_event_).count() < kEventIntervalSeconds) return;
+  SceneEvent e = event(SceneEvent::Kind::kUnrecoverableStep, 0);
+  e.unrecoverable_steps = unreported_;
+  e.body_ids = std::move(failed_bodies_);
+  members_.broadcast(std::move(e));
+  unreported_ = 0;
+  failed_bodies_.clear();
+  last_event_ = now;
 }
 
 void SceneRunner::run(std::stop_token stop) {
   World& world = scene_.world;
-  const double h = world.settings().time_step;
-  // simulated time = wall time since `origin` (shifted forward whenever we re-synchronise)
-  Clock::time_point origin =
-      Clock::now() - std::chrono::duration_cast<Clock::duration>(Seconds(world.time()));
+  const double h = time_step_;
+  // while running, simulated time = time_scale · (wall time since `origin`); the origin is set
+  // again whenever the scene starts, resumes, changes scale or falls too far behind
+  Clock::time_point origin = Clock::now();
   Clock::time_point window_start = Clock::now();
   double window_sim_start = world.time();
   double window_step_seconds = 0;
   std::uint64_t window_steps = 0;
-  // unrecoverable steps not reported yet, and the bodies of the last one
-  std::uint64_t unreported = 0;
-  std::vector<std::uint32_t> failed_bodies;
-  Clock::time_point last_event = Clock::now() - std::chrono::hours(1);
+  last_event_ = Clock::now() - std::chrono::hours(1);
+
+  const auto timed_step = [&] {
+    const Clock::time_point start = Clock::now();
+    step_once();
+    window_step_seconds += Seconds(Clock::now() - start).count();
+    ++window_steps;
+  };
 
   while (!stop.stop_requested()) {
-    const Clock::time_point now = Clock::now();
-    double lag = Seconds(now - origin).count() - world.time();
-    if (lag > kMaxLagSeconds) {
-      origin += std::chrono::duration_cast<Clock::duration>(Seconds(lag - h));
-      lag = h;
-    }
+    bool changed = commands_.apply_all(scene_);
     bool stepped = false;
-    std::uint64_t rescued = 0, unrecoverable = 0;
-    while (lag >= h && !stop.stop_requested()) {
-      const Clock::time_point step_start = Clock::now();
-      commands_.apply_all(scene_);
-      reactions_.apply_and_clear(world);
-      const StepReport report = world.step();
-      rescued += (report.flags & kStepRescued) ? 1 : 0;
-      if (report.flags & kStepUnrecoverable) {
-        ++unrecoverable;
-        failed_bodies = report.unrecoverable_bodies;
+    if (!step_requests_.empty()) {
+      // requested steps of a paused scene, as fast as they go; other requests still get in
+      // between steps, and clients still see the scene move
+      Clock::time_point last_publish = Clock::now();
+      while (!step_requests_.empty() && !stop.stop_requested()) {
+        timed_step();
+        stepped = true;
+        while (!step_requests_.empty() && step_requests_.front().target <= world.step_count()) {
+          step_requests_.front().done(status());
+          step_requests_.erase(step_requests_.begin());
+        }
+        changed |= commands_.apply_all(scene_);
+        if (Clock::now() - last_publish >= kBurstPublishPeriod) {
+          publish();
+          publish_haptics(SteadyClock::now());
+          last_publish = Clock::now();
+        }
       }
-      window_step_seconds += Seconds(Clock::now() - step_start).count();
-      ++window_steps;
-      lag -= h;
-      stepped = true;
+      resync_ = true;
+    } else if (!paused_) {
+      const Clock::time_point now = Clock::now();
+      const double scale = time_scale_;
+      if (resync_) {
+        origin = now - std::chrono::duration_cast<Clock::duration>(Seconds(world.time() / scale));
+        resync_ = false;
+      }
+      double lag = scale * Seconds(now - origin).count() - world.time();
+      if (lag > kMaxLagSeconds * std::max(1.0, scale)) {
+        origin += std::chrono::duration_cast<Clock::duration>(Seconds((lag - h) / scale));
+        lag = h;
+      }
+      while (lag >= h && !stop.stop_requested() && !paused_ && step_requests_.empty()) {
+        if (stepped) changed |= commands_.apply_all(scene_);
+        timed_step();
+        lag -= h;
+        stepped = true;
+      }
     }
-    unreported += unrecoverable;
-    if (unreported > 0 && Seconds(Clock::now() - last_event).count() >= kEventIntervalSeconds) {
-      record_event(unreported, std::move(failed_bodies));
-      unreported = 0;
-      failed_bodies.clear();
-      last_event = Clock::now();
-    }
-    if (stepped) {
+    report_unrecoverable(false);
+    if (stepped || changed) {
       publish();
       publish_haptics(SteadyClock::now());
     }
@@ -189,8 +503,11 @@ void SceneRunner::run(std::stop_token stop) {
       std::lock_guard lock(stats_mutex_);
       stats_.steps = world.step_count();
       stats_.sim_time = world.time();
-      stats_.rescued_steps += rescued;
-      stats_.unrecoverable_steps += unrecoverable;
+      stats_.rescued_steps += window_rescued_;
+      stats_.unrecoverable_steps += window_unrecoverable_;
+      window_rescued_ = window_unrecoverable_ = 0;
+      stats_.paused = paused_;
+      stats_.time_scale = time_scale_;
       const double window = Seconds(after - window_start).count();
       if (window >= kStatsWindowSeconds) {
         stats_.real_time_factor = (world.time() - window_sim_start) / window;
@@ -202,12 +519,15 @@ void SceneRunner::run(std::stop_token stop) {
       }
     }
 
-    // sleep until the next step is due, or until stop() wakes us
-    const auto due =
-        origin + std::chrono::duration_cast<Clock::duration>(Seconds(world.time() + h));
+    // sleep until the next step is due, a request arrives, or stop() wakes us
+    if (!step_requests_.empty() || (!paused_ && resync_)) continue;
+    const auto due = paused_ ? after + kIdleWake
+                             : origin + std::chrono::duration_cast<Clock::duration>(
+                                            Seconds((world.time() + h) / time_scale_));
     std::unique_lock lock(wake_mutex_);
-    wake_.wait_until(lock, stop, due, [] { return false; });
+    wake_.wait_until(lock, stop, due, [this] { return !commands_.empty(); });
   }
+  report_unrecoverable(true);
 }
 
 }  // namespace felt

@@ -1,34 +1,36 @@
 #pragma once
 // One scene served live: a physics thread that is the only writer of the scene's World, paced
-// against the wall clock, publishing immutable snapshots after its steps.
+// against the wall clock (or paused and stepped on request), applying queued requests between
+// steps and publishing immutable snapshots after them.
 
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "core/world_state.hpp"
+#include "runtime/body_catalog.hpp"
 #include "runtime/command_queue.hpp"
 #include "runtime/haptic_frame.hpp"
 #include "runtime/haptic_proxy.hpp"
 #include "runtime/haptic_servo.hpp"
 #include "runtime/reaction_accumulator.hpp"
+#include "runtime/runner_error.hpp"
+#include "runtime/scene_members.hpp"
 #include "runtime/snapshot.hpp"
+#include "runtime/timed_forces.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_error.hpp"
+#include "scene/scene_loader.hpp"
 
 namespace felt {
-
-/// What a client is told about a body when it loads or joins a scene.
-struct BodyInfo {
-  std::uint32_t body_id = 0;
-  std::string name;
-  std::string kind;
-  std::uint32_t particles = 0;
-  std::uint32_t triangles = 0;
-};
 
 struct RunnerStats {
   std::uint64_t steps = 0;
@@ -38,12 +40,45 @@ struct RunnerStats {
   std::uint64_t haptic_updates = 0;  ///< proxy solves since the scene started
   std::uint64_t rescued_steps = 0;
   std::uint64_t unrecoverable_steps = 0;
+  bool paused = false;
+  double time_scale = 1;
   ServoStats servo;  ///< of the scene's scripted devices, if it has any
+};
+
+/// Who may do what in a scene, fixed when it is created.
+struct SceneAccess {
+  ClientId owner = 0;  ///< the client that loaded or created it; 0: the server
+  bool shared = false;  ///< anyone in it may change any body and control the scene
+  bool persistent = false;  ///< stays when its last client leaves (the server's own scenes)
+};
+
+/// Where the scene came from, to build it again for a reset (null: it cannot be reset).
+using SceneReloader = std::function<std::expected<Scene, SceneError>()>;
+
+/// The scene's clock after a request.
+struct SceneStatus {
+  std::uint64_t step = 0;
+  double sim_time = 0;
+  bool paused = false;
+  double time_scale = 1;
+};
+
+struct SavedState {
+  std::uint32_t id = 0;
+  std::shared_ptr<const WorldState> state;
+  double sim_time = 0;
+};
+
+/// What a scene refuses to grow past.
+struct SceneLimits {
+  std::size_t max_bodies = 256;
+  std::uint64_t max_particles = 4'000'000;
 };
 
 class SceneRunner {
  public:
-  explicit SceneRunner(Scene scene);
+  explicit SceneRunner(Scene scene, SceneAccess access = {}, SceneReloader reload = {},
+                       SceneLimits limits = {});
   ~SceneRunner();
   SceneRunner(const SceneRunner&) = delete;
   SceneRunner& operator=(const SceneRunner&) = delete;
@@ -51,21 +86,62 @@ class SceneRunner {
   /// Starts the physics thread, and the servo thread if the scene has scripted devices.
   /// Simulated time then follows the wall clock.
   void start();
-  /// Finishes the current step and joins the physics and servo threads.
+  /// Finishes the current step and joins the physics and servo threads. Requests still queued
+  /// are cancelled.
   void stop();
 
   const std::string& name() const { return name_; }
+  const SceneAccess& access() const { return access_; }
   const ProxySettings& haptics() const { return haptics_; }
-  const std::vector<BodyInfo>& bodies() const { return bodies_; }
+  Real time_step() const { return time_step_; }
+  const SceneLimits& limits() const { return limits_; }
+  SceneMembers& members() { return members_; }
 
-  /// Queues a change, applied before the next step.
-  void post(SceneCommand command) { commands_.push(std::move(command)); }
+  /// The scene's bodies now (never null). A body a request added is in it before the request's
+  /// completion runs.
+  std::shared_ptr<const BodyCatalog> bodies() const { return catalog_.load(); }
+  /// Whether `client` may change body `body` (its owner, or anyone in a shared scene).
+  bool may_change(ClientId client, const BodyInfo& body) const;
+  /// Whether `client` may pause, step, reset or destroy the scene.
+  bool may_control(ClientId client) const;
+
+  /// Queues a change, applied before the next step; `cancel` runs instead if the scene stops
+  /// first.
+  void post(SceneCommand command, std::function<void()> cancel = {});
+
+  // Requests answered through a completion once the physics thread has carried them out.
+  // `by` is the client asking; the other clients in the scene hear of it as an event.
+  void pause(ClientId by, Completion<SceneStatus> done);
+  void resume(ClientId by, Completion<SceneStatus> done);
+  /// Takes `steps` steps of a paused scene as fast as it can.
+  void step(ClientId by, std::uint32_t steps, Completion<SceneStatus> done);
+  /// Simulated seconds per wall second while running, (0, 100].
+  void set_time_scale(ClientId by, double scale, Completion<SceneStatus> done);
+  /// Builds the scene again from its source: bodies added since are gone, time is 0.
+  void reset(ClientId by, Completion<SceneStatus> done);
+  /// Keeps the state (the latest kMaxSavedStates saves) and returns it.
+  void save_state(ClientId by, Completion<SavedState> done);
+  void restore_state(ClientId by, std::uint32_t state_id, Completion<SceneStatus> done);
+  void restore_state(ClientId by, std::shared_ptr<const WorldState> state,
+                     Completion<SceneStatus> done);
+  void add_body(ClientId by, SceneBody body, Completion<BodyInfo> done);
+  void add_collider(ClientId by, const Collider& collider, Completion<BodyInfo> done);
+  void remove_body(ClientId by, BodyId body, Completion<BodyId> done);
+  /// Runs `change` on a live body's world between steps (nothing if the body is gone by then)
+  /// and tells the other clients.
+  void change_body(ClientId by, BodyId body, std::function<void(World&)> change);
+  /// `force` on each of `vertices` for `duration` simulated seconds (0: the next step).
+  void apply_force(ClientId by, BodyId body, std::vector<std::uint32_t> vertices,
+                   const Vec3& force, Real duration);
 
   /// The latest published snapshot (never null).
   std::shared_ptr<const SceneSnapshot> latest() const { return latest_.load(); }
 
-  /// A new proxy with the scene's haptics settings, known to the scene as `key`.
+  /// A new proxy known to the scene as `key`, with the scene's haptics settings or `settings`.
   HapticProxy open_proxy(std::uint64_t key) const { return HapticProxy(key, haptics_); }
+  HapticProxy open_proxy(std::uint64_t key, const ProxySettings& settings) const {
+    return HapticProxy(key, settings);
+  }
   /// Updates `proxy` with its device at `device` against the surfaces as rendered now, and
   /// records its reaction on the touched body. Safe from any thread; one proxy is updated by
   /// one thread at a time.
@@ -80,23 +156,58 @@ class SceneRunner {
   /// The scripted devices' latest updates (empty without devices).
   std::vector<HapticRecord> device_states() const;
 
+  static constexpr std::size_t kMaxSavedStates = 8;
+  static constexpr std::uint32_t kMaxStepsPerRequest = 100'000;
+
  private:
+  struct StepRequest {
+    std::uint64_t target = 0;
+    Completion<SceneStatus> done;
+  };
+
   void run(std::stop_token stop);
+  /// One step: queued forces and reactions, the world's step, the health bookkeeping.
+  void step_once();
   void publish();
+  void publish_catalog();
   /// Makes the haptic frame for the snapshot just published, if proxies are in use.
   void publish_haptics(SteadyClock::time_point now);
-  /// Records that `unrecoverable_steps` steps failed, the last of them in `bodies`.
-  void record_event(std::uint64_t unrecoverable_steps, std::vector<std::uint32_t> bodies);
+  /// Reports unrecoverable steps not yet reported, at most every kEventInterval.
+  void report_unrecoverable(bool force);
+  SceneStatus status() const;
+  /// Queues `run`; its completion gets kCancelled if the scene stops first.
+  template <class T>
+  void request(Completion<T> done, std::function<void(Scene&, Completion<T>&)> run);
+  SceneEvent event(SceneEvent::Kind kind, ClientId by) const;
+  void restore(ClientId by, const WorldState& state, Completion<SceneStatus>& done);
 
   Scene scene_;  ///< written by the physics thread only, once started
   std::string name_;
+  SceneAccess access_;
+  SceneReloader reload_;
+  SceneLimits limits_;
   ProxySettings haptics_;
-  std::vector<BodyInfo> bodies_;
+  Real time_step_;
   CommandQueue commands_;
   ReactionAccumulator reactions_;
+  SceneMembers members_;
   std::atomic<std::shared_ptr<const SceneSnapshot>> latest_;
-  /// the latest events, written by the physics thread, shared by the snapshots it publishes
-  std::shared_ptr<const std::vector<SceneEvent>> events_;
+  std::atomic<std::shared_ptr<const BodyCatalog>> catalog_;
+  /// owner of each body, by id; the physics thread's, published through catalog_
+  std::vector<std::pair<BodyId, ClientId>> owners_;
+
+  // the physics thread's own
+  TimedForces timed_forces_;
+  std::deque<SavedState> saved_;
+  std::uint32_t next_state_id_ = 1;
+  std::vector<StepRequest> step_requests_;
+  bool paused_ = false;
+  double time_scale_ = 1;
+  bool resync_ = true;  ///< the wall clock origin must be set again (start, resume, scale)
+  std::uint64_t unreported_ = 0;  ///< unrecoverable steps not reported yet
+  std::vector<BodyId> failed_bodies_;
+  std::chrono::steady_clock::time_point last_event_{};
+  std::uint64_t window_rescued_ = 0, window_unrecoverable_ = 0;
 
   TriangleQueryKind haptic_structure_;
   std::atomic<std::shared_ptr<const HapticFrame>> haptic_;

@@ -27,11 +27,12 @@ std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnap
   snapshot->step = world.step_count();
   snapshot->sim_time = world.time();
   snapshot->bodies.reserve(world.body_count());
-  for (std::uint32_t id = 0; id < world.body_count(); ++id) {
+  for (BodyId id : world.body_ids()) {
     const BodyRef& ref = world.body_ref(id);
+    if (ref.kind == BodyRef::Kind::kCollider) continue;  // nothing to see or touch
+    const std::size_t at = snapshot->bodies.size();
     BodySnapshot& out = snapshot->bodies.emplace_back();
     out.body_id = id;
-    const bool reuse = previous && id < previous->bodies.size();
     if (ref.kind == BodyRef::Kind::kCloth) {
       const ClothBody& body = world.cloths()[ref.index];
       out.name = body.name();
@@ -40,12 +41,20 @@ std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnap
     } else {
       const SolidBody& body = world.solids().bodies()[ref.index];
       out.name = body.name();
-      out.surface =
-          solid_surface(body, reuse ? previous->bodies[id].surface : nullptr, out.positions);
+      const BodySnapshot* before = previous ? previous->find(id, at) : nullptr;
+      out.surface = solid_surface(body, before ? before->surface : nullptr, out.positions);
     }
     compute_vertex_normals(out.positions, out.triangles(), out.normals);
   }
   return snapshot;
+}
+
+const BodySnapshot* SceneSnapshot::find(BodyId id, std::size_t hint) const {
+  if (hint < bodies.size() && bodies[hint].body_id == id) return &bodies[hint];
+  for (const BodySnapshot& body : bodies) {
+    if (body.body_id == id) return &body;
+  }
+  return nullptr;
 }
 
 }  // namespace felt

@@ -13,7 +13,7 @@
 namespace felt {
 
 struct BodySnapshot {
-  std::uint32_t body_id = 0;
+  BodyId body_id = 0;
   std::string name;
   /// the surface clients see: a cloth's triangles, a solid's fine embedded surface or its
   /// lattice's surface; shared by every snapshot, never copied
@@ -31,6 +31,9 @@ struct SceneSnapshot {
   /// the scene's latest events, oldest first (null when there were none); sequence numbers
   /// tell a reader which it has not seen
   std::shared_ptr<const std::vector<SceneEvent>> events;
+
+  /// The body with id `id` (looked for at `hint` first), or null.
+  const BodySnapshot* find(BodyId id, std::size_t hint = 0) const;
 };
 
 /// Copies what clients see of `world` now, sharing the surfaces of `previous` (the last

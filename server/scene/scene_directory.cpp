@@ -64,4 +64,21 @@ std::expected<std::filesystem::path, std::string> SceneDirectory::resolve(
   return file;
 }
 
+std::vector<std::string> SceneDirectory::list() const {
+  namespace fs = std::filesystem;
+  std::vector<std::string> names;
+  std::error_code ec;
+  fs::recursive_directory_iterator it(root_, fs::directory_options::skip_permission_denied, ec);
+  for (; !ec && it != fs::recursive_directory_iterator() && names.size() < kMaxListed;
+       it.increment(ec)) {
+    if (it.depth() > 8) it.disable_recursion_pending();
+    if (it->path().extension() != ".json") continue;
+    std::string name = it->path().lexically_relative(root_).replace_extension().generic_string();
+    // only what a client could name: the same checks as resolve()
+    if (resolve(name)) names.push_back(std::move(name));
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 }  // namespace felt

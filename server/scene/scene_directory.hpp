@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace felt {
 
@@ -24,7 +25,13 @@ class SceneDirectory {
   /// error with a message fit for the client.
   std::expected<std::filesystem::path, std::string> resolve(std::string_view name) const;
 
+  /// The names resolve() takes for the scene files in the directory, sorted (at most
+  /// kMaxListed; empty when the directory is not available).
+  std::vector<std::string> list() const;
+
   const std::filesystem::path& root() const { return root_; }
+
+  static constexpr std::size_t kMaxListed = 1000;
 
  private:
   std::filesystem::path root_;

@@ -307,6 +307,36 @@ Collider read_collider(const json& value, const std::string& path) {
   return c;
 }
 
+SceneBody read_body(const json& entry, const std::string& path, std::size_t index,
+                    const SceneLoadOptions& options, Real time_step, std::size_t& particles_left) {
+  const json* type = entry.is_object() && entry.contains("type") ? &entry["type"] : nullptr;
+  if (type && *type == "cloth") {
+    const ObjectReader body(entry, path,
+                            {"name", "type", "grid", "mesh", "mass", "springs", "drag",
+                             "stretch_limit", "thickness", "self_collision", "wind", "integrator",
+                             "pin", "constraints", "anchors", "constraint_forces"});
+    return read_cloth(body, index, options, particles_left);
+  }
+  if (type && *type == "solid") {
+    const ObjectReader body(entry, path,
+                            {"name", "type", "lattice", "mesh", "tetgen", "torus", "sphere",
+                             "transform", "model", "node_mass", "friction", "self_collision",
+                             "mass_spring", "shape_matching", "fem", "pin"});
+    return read_solid(body, index, options.asset_root, time_step, particles_left);
+  }
+  fail(child(path, "type"), "must be \"cloth\" or \"solid\"");
+}
+
+void read_bodies(const json& bodies, const SceneLoadOptions& options, Real time_step,
+                 Scene& scene) {
+  if (!bodies.is_array()) fail("bodies", "must be an array");
+  std::size_t particles_left = options.max_particles;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    std::visit([&](auto&& body) { scene.world.add_body(std::move(body)); },
+               read_body(bodies[i], element("bodies", i), i, options, time_step, particles_left));
+  }
+}
+
 Scene read_scene(const json& document, const SceneLoadOptions& options) {
   const ObjectReader root(
       document, "",
@@ -332,36 +362,13 @@ Scene read_scene(const json& document, const SceneLoadOptions& options) {
                  scene);
   }
 
+  // colliders take the body ids after the bodies, so a body's id is its index in "bodies"
+  if (root.has("bodies")) read_bodies(root.at("bodies"), options, settings.time_step, scene);
   if (root.has("colliders")) {
     const json& colliders = root.at("colliders");
     if (!colliders.is_array()) fail("colliders", "must be an array");
     for (std::size_t i = 0; i < colliders.size(); ++i) {
       scene.world.add_collider(read_collider(colliders[i], element("colliders", i)));
-    }
-  }
-  if (!root.has("bodies")) return scene;
-  const json& bodies = root.at("bodies");
-  if (!bodies.is_array()) fail("bodies", "must be an array");
-  std::size_t particles_left = options.max_particles;
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const std::string path = element("bodies", i);
-    const json& entry = bodies[i];
-    const json* type = entry.is_object() && entry.contains("type") ? &entry["type"] : nullptr;
-    if (type && *type == "cloth") {
-      const ObjectReader body(entry, path,
-                              {"name", "type", "grid", "mesh", "mass", "springs", "drag",
-                               "stretch_limit", "thickness", "self_collision", "wind", "integrator",
-                               "pin", "constraints", "anchors", "constraint_forces"});
-      scene.world.add_body(read_cloth(body, i, options, particles_left));
-    } else if (type && *type == "solid") {
-      const ObjectReader body(entry, path,
-                              {"name", "type", "lattice", "mesh", "tetgen", "torus", "sphere",
-                               "transform", "model", "node_mass", "friction", "self_collision",
-                               "mass_spring", "shape_matching", "fem", "pin"});
-      scene.world.add_body(
-          read_solid(body, i, options.asset_root, settings.time_step, particles_left));
-    } else {
-      fail(child(path, "type"), "must be \"cloth\" or \"solid\"");
     }
   }
   return scene;
@@ -372,6 +379,25 @@ Scene read_scene(const json& document, const SceneLoadOptions& options) {
 std::expected<Scene, SceneError> load_scene(const json& document, const SceneLoadOptions& options) {
   try {
     return read_scene(document, options);
+  } catch (const Failure& failure) {
+    return std::unexpected(failure.error);
+  }
+}
+
+std::expected<SceneBody, SceneError> load_body(const json& entry, const std::string& path,
+                                               std::size_t index, Real time_step,
+                                               const SceneLoadOptions& options) {
+  try {
+    std::size_t particles_left = options.max_particles;
+    return read_body(entry, path, index, options, time_step, particles_left);
+  } catch (const Failure& failure) {
+    return std::unexpected(failure.error);
+  }
+}
+
+std::expected<Collider, SceneError> load_collider(const json& entry, const std::string& path) {
+  try {
+    return read_collider(entry, path);
   } catch (const Failure& failure) {
     return std::unexpected(failure.error);
   }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <variant>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -23,12 +24,25 @@ struct SceneLoadOptions {
   std::filesystem::path asset_root;
 };
 
+/// A body of a scene file's "bodies" array, built.
+using SceneBody = std::variant<ClothBody, SolidBody>;
+
 std::expected<Scene, SceneError> load_scene(const nlohmann::json& document,
                                             const SceneLoadOptions& options = {});
 std::expected<Scene, SceneError> load_scene_text(std::string_view text,
                                                  const SceneLoadOptions& options = {});
 std::expected<Scene, SceneError> load_scene_file(const std::filesystem::path& file,
                                                  const SceneLoadOptions& options = {});
+
+/// One entry of a scene's "bodies" array (a body added at run time), read as the scene loader
+/// reads it: `path` names it in errors, `index` numbers its default name, `time_step` is the
+/// scene's; options.max_particles bounds this body alone.
+std::expected<SceneBody, SceneError> load_body(const nlohmann::json& entry, const std::string& path,
+                                               std::size_t index, Real time_step,
+                                               const SceneLoadOptions& options);
+/// One entry of a scene's "colliders" array.
+std::expected<Collider, SceneError> load_collider(const nlohmann::json& entry,
+                                                  const std::string& path);
 
 /// Parses JSON text; `source` names it in the error.
 std::expected<nlohmann::json, SceneError> parse_json(std::string_view text,

@@ -206,8 +206,12 @@ TEST_F(FeltdTest, SoftSolidsStreamTheirFineSurfaceAndCanBeTouched) {
   connect(client);
   client.hello("test");
   const v1::SceneLoaded loaded = client.load_scene_by_name("thesis/three_cubes");
-  ASSERT_EQ(loaded.bodies_size(), 3);
+  // three cubes, then the floor: colliders take the ids after the bodies
+  ASSERT_EQ(loaded.bodies_size(), 4);
+  EXPECT_EQ(loaded.bodies(3).kind(), "collider");
+  EXPECT_EQ(loaded.bodies(3).body_id(), 3u);
   for (const v1::BodyInfo& body : loaded.bodies()) {
+    if (body.kind() == "collider") continue;
     EXPECT_EQ(body.kind(), "solid");
     EXPECT_EQ(body.particles(), 2402u);  // the fine 20 x 20 x 20 box surface (Table 7.1)
     EXPECT_EQ(body.triangles(), 4800u);
@@ -252,12 +256,16 @@ TEST_F(FeltdTest, SoftSolidsStreamTheirFineSurfaceAndCanBeTouched) {
     for (float x : body.positions()) ASSERT_TRUE(std::isfinite(x));
   }
 
-  // cloth-only requests name the body's kind
+  // cloth-only parameters name the body's kind; pins index a solid's lattice nodes
   v1::SetBodyParameters set;
   set.set_body_id(0);
   set.set_drag(0.1);
   expect_error([&] { client.set_body_parameters(set); }, v1::ERROR_CODE_BAD_REQUEST);
-  expect_error([&] { client.pin_particles(0, {1}, {}); }, v1::ERROR_CODE_BAD_REQUEST);
+  set.clear_drag();
+  set.set_friction(0.2);
+  EXPECT_EQ(client.set_body_parameters(set).body_id(), 0u);
+  EXPECT_EQ(client.pin_particles(0, {1}, {}).body_id(), 0u);
+  expect_error([&] { client.pin_particles(0, {216}, {}); }, v1::ERROR_CODE_BAD_REQUEST);
 }
 
 TEST_F(FeltdTest, UnrecoverableStepsReachSubscribersAsEvents) {

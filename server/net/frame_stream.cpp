@@ -1,0 +1,167 @@
+#include "net/frame_stream.hpp"
+
+#include <algorithm>
+
+namespace felt::net {
+namespace {
+
+// key frames bound each body with this much room around it, so that the frames after it still
+// fit the same bounds (and can be deltas) while the body moves
+constexpr float kBoundsMargin = 0.25f;
+constexpr float kMinBoundsMargin = 0.01f;  // m
+
+void to_floats(const std::vector<Vec3>& vectors, std::vector<float>& out) {
+  out.resize(3 * vectors.size());
+  for (std::size_t i = 0; i < vectors.size(); ++i) {
+    for (int k = 0; k < 3; ++k) out[3 * i + k] = static_cast<float>(vectors[i][k]);
+  }
+}
+
+void put_floats(const std::vector<Vec3>& vectors, google::protobuf::RepeatedField<float>& out) {
+  out.Reserve(static_cast<int>(3 * vectors.size()));
+  for (const Vec3& v : vectors) {
+    for (int k = 0; k < 3; ++k) out.AddAlreadyReserved(static_cast<float>(v[k]));
+  }
+}
+
+void put_bounds(const wire::QuantizationBounds& bounds, felt::v1::QuantizedVectors& out) {
+  for (int k = 0; k < 3; ++k) {
+    out.add_lower(bounds.lower[k]);
+    out.add_upper(bounds.upper[k]);
+  }
+}
+
+/// Encodes `q` as deltas against `base` when there is one of the same size, else as values.
+void put_values(const std::vector<std::uint16_t>& q, const std::vector<std::uint16_t>* base,
+                felt::v1::QuantizedVectors& out) {
+  if (base && base->size() == q.size()) {
+    wire::append_deltas(q, *base, *out.mutable_deltas());
+  } else {
+    wire::append_values(q, *out.mutable_values());
+  }
+}
+
+}  // namespace
+
+const FrameStream::BodyRecord* FrameStream::FrameRecord::find(BodyId id) const {
+  for (const BodyRecord& body : bodies) {
+    if (body.body_id == id) return &body;
+  }
+  return nullptr;
+}
+
+void FrameStream::start(const FrameOptions& options) {
+  active_ = true;
+  options_ = options;
+  restart();
+}
+
+void FrameStream::stop() {
+  active_ = false;
+  restart();
+}
+
+void FrameStream::restart() {
+  last_step_ = ~std::uint64_t{0};
+  topology_sent_.clear();
+  building_topology_.clear();
+  building_ = {};
+  written_.clear();
+  base_.reset();
+}
+
+bool FrameStream::wanted(BodyId id) const {
+  return options_.bodies.empty() ||
+         std::find(options_.bodies.begin(), options_.bodies.end(), id) != options_.bodies.end();
+}
+
+void FrameStream::put_quantized(const BodySnapshot& body, const BodyRecord* base,
+                                BodyRecord& record, felt::v1::BodyFrame& out) {
+  to_floats(body.positions, scratch_);
+  // a delta keeps its base's bounds; a body that moved out of them gets a key frame
+  const bool delta = base && base->positions.size() == scratch_.size() &&
+                     wire::fits(scratch_, base->bounds);
+  record.bounds = delta ? base->bounds : wire::bounds_around(scratch_, kBoundsMargin,
+                                                             kMinBoundsMargin);
+  wire::quantize(scratch_, record.bounds, record.positions);
+  felt::v1::QuantizedVectors& positions = *out.mutable_quantized_positions();
+  put_bounds(record.bounds, positions);
+  put_values(record.positions, delta ? &base->positions : nullptr, positions);
+  if (options_.normals) {
+    to_floats(body.normals, scratch_);
+    const wire::QuantizationBounds unit{{-1, -1, -1}, {1, 1, 1}};
+    wire::quantize(scratch_, unit, record.normals);
+    felt::v1::QuantizedVectors& normals = *out.mutable_quantized_normals();
+    put_bounds(unit, normals);
+    put_values(record.normals, delta ? &base->normals : nullptr, normals);
+  }
+}
+
+void FrameStream::build(const SceneSnapshot& snapshot, SceneId scene, std::uint64_t skipped,
+                        felt::v1::Frame& frame) {
+  building_ = {};
+  building_.sequence = next_sequence_++;
+  building_topology_.clear();
+  last_step_ = snapshot.step;
+  frame.set_scene_id(scene);
+  frame.set_step(snapshot.step);
+  frame.set_sim_time(snapshot.sim_time);
+  frame.set_skipped(skipped);
+  frame.set_sequence(building_.sequence);
+  const FrameRecord* base = options_.quantized && options_.deltas && base_ ? &*base_ : nullptr;
+  if (base) frame.set_base_sequence(base->sequence);
+  for (const BodySnapshot& body : snapshot.bodies) {
+    if (!wanted(body.body_id)) continue;
+    felt::v1::BodyFrame* out = frame.add_bodies();
+    out->set_body_id(body.body_id);
+    out->set_name(body.name);
+    out->set_vertex_count(static_cast<std::uint32_t>(body.positions.size()));
+    if (options_.quantized) {
+      put_quantized(body, base ? base->find(body.body_id) : nullptr,
+                    building_.bodies.emplace_back(), *out);
+      building_.bodies.back().body_id = body.body_id;
+    } else {
+      put_floats(body.positions, *out->mutable_positions());
+      if (options_.normals) put_floats(body.normals, *out->mutable_normals());
+    }
+    if (std::find(topology_sent_.begin(), topology_sent_.end(), body.body_id) ==
+        topology_sent_.end()) {
+      auto& triangles = *out->mutable_triangles();
+      triangles.Reserve(static_cast<int>(3 * body.triangles().size()));
+      for (const Triangle& t : body.triangles()) {
+        for (std::uint32_t corner : t) triangles.AddAlreadyReserved(corner);
+      }
+      topology_sent_.push_back(body.body_id);
+      building_topology_.push_back(body.body_id);
+    }
+  }
+  // bodies that are gone need their triangles again should their id ever come back
+  std::erase_if(topology_sent_, [&](BodyId id) { return !snapshot.find(id); });
+}
+
+void FrameStream::dropped() {
+  for (BodyId id : building_topology_) std::erase(topology_sent_, id);
+  building_topology_.clear();
+  building_ = {};
+}
+
+void FrameStream::written() {
+  building_topology_.clear();
+  if (!options_.quantized || !options_.deltas) return;
+  written_.push_back(std::move(building_));
+  building_ = {};
+  if (written_.size() > kKeptFrames) written_.pop_front();
+}
+
+bool FrameStream::acknowledge(std::uint64_t sequence) {
+  if (sequence == 0 || sequence >= next_sequence_) return false;
+  const auto it = std::find_if(written_.begin(), written_.end(),
+                               [sequence](const FrameRecord& f) { return f.sequence == sequence; });
+  // a frame already forgotten (acknowledged late) or dropped unsent cannot be a base
+  if (it == written_.end()) return true;
+  if (!base_ || base_->sequence < sequence) base_ = *it;
+  written_.erase(written_.begin(), it);
+  return true;
+}
+
+}  // namespace felt::net

@@ -1,0 +1,83 @@
+#pragma once
+// One session's frame subscription: which bodies, how they are encoded (float32, or 16-bit
+// quantized and optionally as deltas against the last frame the client acknowledged), and
+// which triangles the client already has. Snapshot -> felt.v1.Frame; no sockets.
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <vector>
+
+#include "felt/v1/frames.pb.h"
+#include "runtime/scene_registry.hpp"
+#include "runtime/snapshot.hpp"
+#include "wire/vector_quantizer.hpp"
+
+namespace felt::net {
+
+struct FrameOptions {
+  double rate_hz = 60;
+  bool normals = false;
+  std::vector<BodyId> bodies;  ///< only these (empty: all)
+  bool quantized = false;
+  bool deltas = false;  ///< quantized only
+};
+
+class FrameStream {
+ public:
+  bool active() const { return active_; }
+  const FrameOptions& options() const { return options_; }
+
+  /// Starts (or replaces) the subscription: the next frame is a key frame with triangles.
+  void start(const FrameOptions& options);
+  void stop();
+  /// The session is in another scene now: triangles again, no delta bases.
+  void restart();
+
+  /// Whether `snapshot` is newer than the last frame built.
+  bool has_new(const SceneSnapshot& snapshot) const { return snapshot.step != last_step_; }
+  /// Builds the next frame from `snapshot`; `skipped` frames were dropped before it.
+  void build(const SceneSnapshot& snapshot, SceneId scene, std::uint64_t skipped,
+             felt::v1::Frame& frame);
+  /// The frame last built was replaced before it was sent: the triangles it carried must go
+  /// again, and it cannot be a delta base.
+  void dropped();
+  /// The frame last built was handed to the socket.
+  void written();
+  /// The client has frame `sequence`; later deltas may use it as their base. False when no
+  /// frame with that sequence was built.
+  bool acknowledge(std::uint64_t sequence);
+
+  /// Frames written and kept as possible delta bases (bounds the memory a client costs).
+  static constexpr std::size_t kKeptFrames = 8;
+
+ private:
+  struct BodyRecord {
+    BodyId body_id = 0;
+    wire::QuantizationBounds bounds;
+    std::vector<std::uint16_t> positions;
+    std::vector<std::uint16_t> normals;
+  };
+  struct FrameRecord {
+    std::uint64_t sequence = 0;
+    std::vector<BodyRecord> bodies;
+    const BodyRecord* find(BodyId id) const;
+  };
+
+  bool wanted(BodyId id) const;
+  void put_quantized(const BodySnapshot& body, const BodyRecord* base, BodyRecord& record,
+                     felt::v1::BodyFrame& out);
+
+  bool active_ = false;
+  FrameOptions options_;
+  std::uint64_t next_sequence_ = 1;
+  std::uint64_t last_step_ = ~std::uint64_t{0};
+  std::vector<BodyId> topology_sent_;
+  std::vector<BodyId> building_topology_;  ///< bodies whose triangles the last frame carries
+  FrameRecord building_;                   ///< the last frame built
+  std::deque<FrameRecord> written_;
+  std::optional<FrameRecord> base_;  ///< the latest acknowledged frame still kept
+  std::vector<float> scratch_;
+};
+
+}  // namespace felt::net

@@ -1,0 +1,131 @@
+// Haptics: open and close proxies, and the proxy update answered at once.
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "net/requests.hpp"
+
+namespace felt::net {
+namespace {
+
+std::uint64_t steady_ns() {
+  return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                        std::chrono::steady_clock::now().time_since_epoch())
+                                        .count());
+}
+
+/// `settings` over the scene's `defaults`, or why they are not usable.
+std::expected<ProxySettings, std::string> merge(const v1::ProxySettings& settings,
+                                                const ProxySettings& defaults) {
+  ProxySettings out = defaults;
+  struct Field {
+    bool given;
+    double value;
+    double lo, hi;
+    bool open_below;  // (lo, hi] instead of [lo, hi]
+    const char* name;
+    Real& target;
+  };
+  const Field fields[] = {
+      {settings.has_radius(), settings.radius(), 0, 0.5, false, "radius", out.radius},
+      {settings.has_stiffness(), settings.stiffness(), 0, 1e5, true, "stiffness", out.stiffness},
+      {settings.has_max_force(), settings.max_force(), 0, 1000, true, "max_force", out.max_force},
+      {settings.has_damping(), settings.damping(), 0, 1000, false, "damping", out.damping},
+      {settings.has_max_force_change(), settings.max_force_change(), 0, 1000, false,
+       "max_force_change", out.max_force_change},
+      {settings.has_static_friction(), settings.static_friction(), 0, 10, false,
+       "static_friction", out.static_friction},
+      {settings.has_dynamic_friction(), settings.dynamic_friction(), 0, 10, false,
+       "dynamic_friction", out.dynamic_friction},
+  };
+  for (const Field& f : fields) {
+    if (!f.given) continue;
+    const bool ok = std::isfinite(f.value) && f.value <= f.hi &&
+                    (f.open_below ? f.value > f.lo : f.value >= f.lo);
+    if (!ok) {
+      std::ostringstream why;
+      why << f.name << " must be a finite number in " << (f.open_below ? "(" : "[") << f.lo
+          << ", " << f.hi << "]";
+      return std::unexpected(why.str());
+    }
+    f.target = f.value;
+  }
+  if (settings.has_force_shading()) out.force_shading = settings.force_shading();
+  if (out.dynamic_friction > out.static_friction) {
+    return std::unexpected("dynamic_friction must not exceed static_friction");
+  }
+  return out;
+}
+
+std::string too_many_proxies(Session& session) {
+  return "at most " + std::to_string(session.context().options.max_proxies_per_session) +
+         " proxies per client";
+}
+
+}  // namespace
+
+void handle_open_proxy(Session& session, std::uint64_t id, const v1::OpenProxy& open) {
+  const auto settings = merge(open.settings(), session.scene()->haptics());
+  if (!settings) {
+    session.send_error(id, v1::ERROR_CODE_BAD_REQUEST, settings.error());
+    return;
+  }
+  const std::uint32_t proxy = session.open_proxy(*settings);
+  if (proxy == 0) {
+    session.send_error(id, v1::ERROR_CODE_LIMIT_EXCEEDED, too_many_proxies(session));
+    return;
+  }
+  reply(session, id, [&](v1::ServerMessage& message) {
+    v1::ProxyOpened& opened = *message.mutable_proxy_opened();
+    opened.set_proxy_id(proxy);
+    fill_proxy_settings(*settings, *opened.mutable_settings());
+  });
+}
+
+void handle_close_proxy(Session& session, std::uint64_t id, const v1::CloseProxy& close) {
+  if (!session.close_proxy(close.proxy_id())) {
+    session.send_error(id, v1::ERROR_CODE_UNKNOWN_ID,
+                       "no open proxy " + std::to_string(close.proxy_id()));
+    return;
+  }
+  reply(session, id, [&](v1::ServerMessage& message) {
+    message.mutable_proxy_closed()->set_proxy_id(close.proxy_id());
+  });
+}
+
+void handle_proxy_update(Session& session, std::uint64_t id, const v1::ProxyUpdate& update) {
+  const std::uint64_t received = steady_ns();
+  const Vec3 position = to_vec3(update.position());
+  if (!update.has_position() || !position.allFinite()) {
+    session.send_error(id, v1::ERROR_CODE_BAD_REQUEST, "position must be three finite numbers");
+    return;
+  }
+  HapticProxy* proxy = session.proxy(update.proxy_id());
+  if (!proxy) {
+    session.send_error(id, v1::ERROR_CODE_LIMIT_EXCEEDED, too_many_proxies(session));
+    return;
+  }
+  const ProxyOutput out = session.scene()->render(*proxy, position, update.buttons());
+  const HapticContact& contact = out.contact;
+  reply(session, id, [&](v1::ServerMessage& message) {
+    v1::ForceUpdate* force = message.mutable_force_update();
+    force->set_proxy_id(update.proxy_id());
+    put_vec3(contact.force, *force->mutable_force());
+    put_vec3(contact.contact_point, *force->mutable_contact_point());
+    force->set_in_contact(contact.in_contact);
+    force->set_body_id(out.grabbing ? out.grabbed_body : contact.body_id);
+    force->set_triangle(contact.triangle);
+    put_vec3(contact.proxy, *force->mutable_proxy());
+    put_vec3(contact.normal, *force->mutable_normal());
+    force->set_constraints(static_cast<std::uint32_t>(contact.constraints));
+    force->set_slipping(contact.slipping);
+    force->set_grabbing(out.grabbing);
+    force->set_grabbed_vertex(out.grabbed_vertex);
+    force->set_client_time_us(update.client_time_us());
+    force->set_server_receive_ns(received);
+    force->set_server_send_ns(steady_ns());
+  });
+}
+
+}  // namespace felt::net

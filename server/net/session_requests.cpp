@@ -1,0 +1,107 @@
+// Hello and GetStats.
+
+#include "net/requests.hpp"
+
+namespace felt::net {
+namespace {
+
+// what the server does, for clients that check before they ask
+constexpr const char* kCapabilities[] = {
+    "scenes.list",   "scenes.load",       "scenes.create", "scenes.join",
+    "scenes.control", "scenes.state",     "bodies.add",    "bodies.remove",
+    "bodies.set",    "bodies.pin",        "bodies.force",  "haptics.proxy",
+    "haptics.grab",  "frames.float32",    "frames.quantized16", "frames.deltas",
+    "events",        "stats"};
+constexpr std::size_t kMaxClientName = 100;
+
+// Compares without an early exit, so the time taken does not reveal how much of a guess was
+// right.
+bool tokens_equal(const std::string& expected, const std::string& given) {
+  unsigned char diff = expected.size() == given.size() ? 0 : 1;
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    diff |= static_cast<unsigned char>(expected[i] ^ (i < given.size() ? given[i] : 0));
+  }
+  return diff == 0;
+}
+
+void fill_limits(const ServerOptions& options, v1::Limits& out) {
+  out.set_max_frame_bytes(options.max_inbound_frame_bytes);
+  out.set_max_requests_in_flight(static_cast<std::uint32_t>(options.max_requests_in_flight));
+  out.set_max_proxies(static_cast<std::uint32_t>(options.max_proxies_per_session));
+  out.set_max_frame_rate_hz(options.max_frame_rate_hz);
+  out.set_max_bodies_per_scene(static_cast<std::uint32_t>(options.max_bodies_per_scene));
+  out.set_max_particles_per_scene(options.max_particles_per_scene);
+  out.set_max_scenes(static_cast<std::uint32_t>(options.max_scenes));
+  out.set_max_clients(static_cast<std::uint32_t>(options.max_clients));
+}
+
+}  // namespace
+
+void handle_hello(Session& session, std::uint64_t id, const v1::Hello& hello) {
+  const ServerContext& context = session.context();
+  if (hello.protocol_version() != kProtocolVersion) {
+    session.send_error(id, v1::ERROR_CODE_UNSUPPORTED_VERSION,
+                       "this server speaks protocol version " + std::to_string(kProtocolVersion) +
+                           ", not " + std::to_string(hello.protocol_version()));
+    return;
+  }
+  if (!context.options.token.empty() && !tokens_equal(context.options.token, hello.token())) {
+    session.send_error(id, v1::ERROR_CODE_UNAUTHORIZED, "wrong or missing token");
+    return;
+  }
+  session.set_greeted(hello.client_name().substr(0, kMaxClientName));
+  reply(session, id, [&](v1::ServerMessage& message) {
+    v1::Welcome* welcome = message.mutable_welcome();
+    welcome->set_protocol_version(kProtocolVersion);
+    welcome->set_server_version(context.server_version);
+    for (const char* capability : kCapabilities) welcome->add_capabilities(capability);
+    welcome->set_scene_id(session.scene_id());
+    welcome->set_client_id(session.client_id());
+    fill_limits(context.options, *welcome->mutable_limits());
+  });
+}
+
+void handle_get_stats(Session& session, std::uint64_t id) {
+  const ServerContext& context = session.context();
+  reply(session, id, [&](v1::ServerMessage& message) {
+    v1::Stats& stats = *message.mutable_stats();
+    if (const auto& scene = session.scene()) {
+      const RunnerStats runner = scene->stats();
+      const auto bodies = scene->bodies();
+      v1::SceneStats& out = *stats.mutable_scene();
+      out.set_scene_id(session.scene_id());
+      out.set_steps(runner.steps);
+      out.set_sim_time(runner.sim_time);
+      out.set_real_time_factor(runner.real_time_factor);
+      out.set_ms_per_step(runner.ms_per_step);
+      out.set_paused(runner.paused);
+      out.set_time_scale(runner.time_scale);
+      out.set_haptic_updates(runner.haptic_updates);
+      out.set_rescued_steps(runner.rescued_steps);
+      out.set_unrecoverable_steps(runner.unrecoverable_steps);
+      out.set_clients(static_cast<std::uint32_t>(scene->members().count()));
+      out.set_bodies(static_cast<std::uint32_t>(bodies->bodies.size()));
+      out.set_particles(bodies->particles());
+      out.set_servo_ticks(runner.servo.ticks);
+      out.set_servo_mean_tick_us(runner.servo.mean_tick_us);
+    }
+    v1::SessionStats& own = *stats.mutable_session();
+    const Session::Counters& counters = session.counters();
+    own.set_client_id(session.client_id());
+    own.set_requests(counters.requests);
+    own.set_frames_sent(counters.frames_sent);
+    own.set_frames_skipped(counters.frames_skipped);
+    own.set_bytes_sent(counters.bytes_sent);
+    own.set_bytes_received(counters.bytes_received);
+    own.set_requests_in_flight(static_cast<std::uint32_t>(session.requests_in_flight()));
+    own.set_open_proxies(static_cast<std::uint32_t>(session.open_proxies()));
+    own.set_queued_reply_bytes(session.queued_reply_bytes());
+    v1::ServerStats& server = *stats.mutable_server();
+    server.set_clients(context.clients.load());
+    server.set_scenes(static_cast<std::uint32_t>(context.scenes.size()));
+    server.set_uptime_s(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - context.started).count());
+  });
+}
+
+}  // namespace felt::net

@@ -1,0 +1,68 @@
+#pragma once
+// What the runtime tests share: a small flat cloth scene, waiting for a condition, and a scene
+// member that records the events it hears.
+
+#include <chrono>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "core/cloth_grid.hpp"
+#include "runtime/scene_runner.hpp"
+
+namespace felt {
+
+using namespace std::chrono_literals;
+
+/// A horizontal 1 m cloth at y = 0 held at its four corners, without gravity, so that it stays
+/// flat until something touches it.
+inline Scene flat_cloth_scene(Vec3 gravity = Vec3::Zero()) {
+  GridClothSpec spec;
+  spec.nx = 11;
+  spec.ny = 11;
+  spec.total_mass = 0.2;
+  spec.plane = GridClothSpec::Plane::kXZ;
+  ClothParams params;
+  params.spring(SpringKind::kStructural) = {true, 200, 0.05};
+  params.spring(SpringKind::kShear) = {true, 50, 0.02};
+  params.spring(SpringKind::kBend) = {true, 5, 0.005};
+  params.drag = 0.02;
+  ClothBody cloth("sheet", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
+                  make_integrator("symplectic_euler"));
+  for (std::uint32_t p : grid_pin_indices(spec, GridPinPreset::kFourCorners)) cloth.pin(p);
+  Scene scene("flat", World(WorldSettings{gravity, 1e-3, 100, 6}));
+  scene.haptics.radius = 0.05;
+  scene.haptics.stiffness = 400;
+  scene.haptics.max_force = 10;
+  scene.world.add_body(std::move(cloth));
+  return scene;
+}
+
+template <typename Predicate>
+bool wait_for(Predicate done, std::chrono::milliseconds timeout = 5s) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(2ms);
+  }
+  return true;
+}
+
+/// A member of a scene that keeps every event it is sent.
+class EventLog : public SceneListener {
+ public:
+  void on_scene_event(const SceneEvent& event) override {
+    std::lock_guard lock(mutex_);
+    events_.push_back(event);
+  }
+  std::vector<SceneEvent> events() const {
+    std::lock_guard lock(mutex_);
+    return events_;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::vector<SceneEvent> events_;
+};
+
+}  // namespace felt
