@@ -1,111 +1,36 @@
-// felt: the command-line client of feltd.
+// felt: the command-line client of feltd. The commands live in cli/.
 
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
+#include <cstdlib>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
 
-#include "felt_client.hpp"
-#include "obj_writer.hpp"
-#include "wire/host_port.hpp"
+#include "cli/commands.hpp"
 
 namespace {
 
+using namespace felt::cli;
 namespace v1 = felt::v1;
-using felt::client::Client;
 
-struct Common {
-  std::string server = "127.0.0.1:7450";
-  std::string token;
-  std::string scene;  ///< load this scene by name before the command
-};
-
-/// Connects, says hello and loads --scene if one was given.
-v1::Welcome connect(Client& client, const Common& common) {
-  const auto address = felt::wire::parse_host_port(common.server);
-  if (!address) {
-    throw felt::client::ClientError(v1::ERROR_CODE_BAD_REQUEST, "--server: " + address.error());
-  }
-  client.connect(address->host, address->port);
-  v1::Welcome welcome = client.hello("felt-cli", common.token);
-  if (!common.scene.empty()) client.load_scene_by_name(common.scene);
-  return welcome;
+void scene_options(CLI::App* command, Common& common) {
+  command->add_option("--scene", common.scene, "Load this scene (by name) first");
+  command->add_option("--join", common.join, "Join this running scene (an id from 'felt scenes')");
 }
 
-int hello(const Common& common) {
-  Client client;
-  const v1::Welcome welcome = connect(client, common);
-  std::printf("feltd %s, protocol %u, scene %llu\ncapabilities:", welcome.server_version().c_str(),
-              welcome.protocol_version(), static_cast<unsigned long long>(welcome.scene_id()));
-  for (const std::string& capability : welcome.capabilities())
-    std::printf(" %s", capability.c_str());
-  std::printf("\n");
-  return 0;
-}
-
-int watch(const Common& common, int frames, const std::string& out_dir, double rate, bool normals) {
-  Client client;
-  connect(client, common);
-  std::filesystem::create_directories(out_dir);
-  client.subscribe_frames(rate, normals);
-  felt::client::TriangleCache triangles;
-  for (int i = 0; i < frames; ++i) {
-    const auto frame = client.next_frame(std::chrono::seconds(5));
-    if (!frame) {
-      std::cerr << "felt: no frame within 5 s\n";
-      return 1;
-    }
-    triangles.update(*frame);
-    char name[32];
-    std::snprintf(name, sizeof name, "frame_%05d.obj", i);
-    const auto file = std::filesystem::path(out_dir) / name;
-    if (!felt::client::write_obj(file, *frame, triangles)) {
-      std::cerr << "felt: cannot write " << file << "\n";
-      return 1;
-    }
-    std::printf("%s  step %llu  t %.3f s%s\n", file.c_str(),
-                static_cast<unsigned long long>(frame->step()), frame->sim_time(),
-                frame->skipped() ? "  (skipped some)" : "");
-  }
-  return 0;
-}
-
-int touch(const Common& common, const std::vector<double>& at, std::uint32_t proxy) {
-  Client client;
-  connect(client, common);
-  const v1::ForceUpdate force = client.proxy_update(proxy, {at[0], at[1], at[2]});
-  std::printf(
-      "force %.6g %.6g %.6g N  |F| %.6g N\n", force.force().x(), force.force().y(),
-      force.force().z(),
-      std::sqrt(force.force().x() * force.force().x() + force.force().y() * force.force().y() +
-                force.force().z() * force.force().z()));
-  if (force.in_contact()) {
-    std::printf("contact at %.6g %.6g %.6g on body %u, triangle %d\n", force.contact_point().x(),
-                force.contact_point().y(), force.contact_point().z(), force.body_id(),
-                force.triangle());
-  } else {
-    std::printf("no contact\n");
-  }
-  return 0;
-}
-
-int set(const Common& common, const v1::SetBodyParameters& parameters) {
-  Client client;
-  connect(client, common);
-  client.set_body_parameters(parameters);
-  std::printf("body %u updated\n", parameters.body_id());
-  return 0;
-}
-
-int pin(const Common& common, std::uint32_t body, const std::vector<std::uint32_t>& pins,
-        const std::vector<std::uint32_t>& unpins) {
-  Client client;
-  connect(client, common);
-  client.pin_particles(body, pins, unpins);
-  std::printf("body %u: %zu pinned, %zu freed\n", body, pins.size(), unpins.size());
-  return 0;
+void path_options(CLI::App* command, DeviceOptions& d) {
+  command->add_option("--path", d.path, "line, circle, press or csv");
+  command->add_option("--from", d.from, "Start X,Y,Z (line, press)")->delimiter(',')->expected(3);
+  command->add_option("--to", d.to, "End X,Y,Z (line, press)")->delimiter(',')->expected(3);
+  command->add_option("--center", d.center, "Centre X,Y,Z (circle)")->delimiter(',')->expected(3);
+  command->add_option("--axis", d.axis, "Circle axis X,Y,Z")->delimiter(',')->expected(3);
+  command->add_option("--radius", d.radius, "Circle radius, m")->capture_default_str();
+  command->add_option("--period", d.period, "Seconds per round trip, turn or press")
+      ->capture_default_str();
+  command->add_option("--duration", d.duration, "Seconds to run (default: one period)");
+  command->add_option("--rate", d.rate, "Updates per second")->capture_default_str();
+  command->add_option("--csv", d.csv, "Samples 'time, x, y, z[, buttons]' (--path csv)");
+  command->add_option("--buttons", d.buttons, "Buttons held (bit 0 grabs)");
+  command->add_option("--proxy", d.proxy, "Proxy id")->capture_default_str();
 }
 
 }  // namespace
@@ -118,37 +43,57 @@ int main(int argc, char** argv) {
   app.add_option("--server", common.server, "feltd address HOST:PORT")->capture_default_str();
   app.add_option("--token", common.token, "Token the server requires (default: $FELT_TOKEN)");
 
-  app.add_subcommand("hello", "Connect, say hello and print what the server reports");
+  CLI::App* hello_cmd =
+      app.add_subcommand("hello", "Print the server's version, capabilities and limits");
+  CLI::App* scenes_cmd = app.add_subcommand("scenes", "List scene files and running scenes");
+  CLI::App* stats_cmd =
+      app.add_subcommand("stats", "Print the statistics of a scene and the server");
+  scene_options(stats_cmd, common);
 
-  int frames = 10;
-  std::string out_dir = "frames";
-  double rate = 0;
-  bool normals = false;
-  CLI::App* watch_cmd =
-      app.add_subcommand("watch", "Save streamed frames as OBJ files, one per frame");
-  watch_cmd->add_option("--frames", frames, "How many frames")
-      ->check(CLI::PositiveNumber)
+  LoadOptions load_options;
+  CLI::App* load_cmd = app.add_subcommand("load", "Load a scene that stays for others to join");
+  load_cmd->add_option("name", load_options.name,
+                       "Scene name (a file in the server's scene directory)");
+  load_cmd->add_option("--json", load_options.json_file, "Send this scene file instead");
+  load_cmd->add_flag("--shared", load_options.shared, "Let every client change every body");
+
+  ClothOptions cloth;
+  std::string body_json;
+  CLI::App* cloth_cmd = app.add_subcommand("add-cloth", "Add a cloth to a scene");
+  cloth_cmd->add_option("--name", cloth.name, "Body name");
+  cloth_cmd->add_option("--grid", cloth.grid, "Particles NX,NY")->delimiter(',')->expected(2);
+  cloth_cmd->add_option("--size", cloth.size, "Width,height in m")->delimiter(',')->expected(2);
+  cloth_cmd->add_option("--center", cloth.center, "Centre X,Y,Z")->delimiter(',')->expected(3);
+  cloth_cmd->add_option("--plane", cloth.plane, "xy (hanging) or xz (lying)")
       ->capture_default_str();
-  watch_cmd->add_option("--out", out_dir, "Directory for the OBJ files")->capture_default_str();
-  watch_cmd->add_option("--rate", rate, "Frames per second to ask for (0: the server's default)");
-  watch_cmd->add_flag("--normals", normals, "Ask for vertex normals too");
-  watch_cmd->add_option("--scene", common.scene, "Load this scene (by name) first");
+  cloth_cmd->add_option("--mass", cloth.mass, "Total mass, kg")->capture_default_str();
+  cloth_cmd->add_option("--integrator", cloth.integrator, "Integrator")->capture_default_str();
+  cloth_cmd->add_option("--pin", cloth.pin, "Pin preset (top_corners, four_corners, top_row, none)")
+      ->capture_default_str();
+  cloth_cmd->add_option("--json", body_json, "The body's scene JSON (or @FILE) instead");
+  scene_options(cloth_cmd, common);
 
-  std::vector<double> at;
-  std::uint32_t proxy = 0;
-  CLI::App* touch_cmd =
-      app.add_subcommand("touch", "Put a haptic proxy at a point and print the force");
-  touch_cmd->add_option("--at", at, "Proxy position X,Y,Z in metres")
-      ->required()
-      ->delimiter(',')
-      ->expected(3);
-  touch_cmd->add_option("--proxy", proxy, "Proxy id")->capture_default_str();
-  touch_cmd->add_option("--scene", common.scene, "Load this scene (by name) first");
+  SolidOptions solid;
+  CLI::App* solid_cmd =
+      app.add_subcommand("add-solid", "Add a soft solid (a lattice box) to a scene");
+  solid_cmd->add_option("--name", solid.name, "Body name");
+  solid_cmd->add_option("--cells", solid.cells, "Cells NX,NY,NZ")->delimiter(',')->expected(3);
+  solid_cmd->add_option("--size", solid.size, "Size X,Y,Z in m")->delimiter(',')->expected(3);
+  solid_cmd->add_option("--center", solid.center, "Centre X,Y,Z")->delimiter(',')->expected(3);
+  solid_cmd->add_option("--model", solid.model, "mass_spring, shape_matching or fem")
+      ->capture_default_str();
+  solid_cmd->add_option("--node-mass", solid.node_mass, "kg per node")->capture_default_str();
+  solid_cmd->add_option("--json", body_json, "The body's scene JSON (or @FILE) instead");
+  scene_options(solid_cmd, common);
+
+  std::uint32_t body = 0;
+  CLI::App* remove_cmd = app.add_subcommand("remove", "Remove a body");
+  remove_cmd->add_option("--body", body, "Body id")->required();
+  scene_options(remove_cmd, common);
 
   v1::SetBodyParameters parameters;
-  std::uint32_t body = 0;
   std::string integrator;
-  double drag = 0, structural = 0, shear = 0, bend = 0, max_strain = 0;
+  double drag = 0, structural = 0, shear = 0, bend = 0, max_strain = 0, damping = 0, friction = 0;
   CLI::App* set_cmd = app.add_subcommand("set", "Change a body's integrator or parameters");
   set_cmd->add_option("--body", body, "Body id")->capture_default_str();
   auto* integrator_opt = set_cmd->add_option("--integrator", integrator, "Integrator name");
@@ -159,18 +104,104 @@ int main(int argc, char** argv) {
   auto* bend_opt = set_cmd->add_option("--bend", bend, "Bend stiffness, N/m");
   auto* strain_opt =
       set_cmd->add_option("--max-strain", max_strain, "Stretch limit (0 switches it off)");
-  set_cmd->add_option("--scene", common.scene, "Load this scene (by name) first");
+  auto* damping_opt =
+      set_cmd->add_option("--damping", damping, "Spring damping (cloth) or the model's (solid)");
+  auto* friction_opt = set_cmd->add_option("--friction", friction, "Coulomb friction (solid)");
+  scene_options(set_cmd, common);
 
   std::vector<std::uint32_t> pins, unpins;
   CLI::App* pin_cmd = app.add_subcommand("pin", "Pin particles where they are, or free them");
   pin_cmd->add_option("--body", body, "Body id")->capture_default_str();
   pin_cmd->add_option("--pin", pins, "Particles to pin, e.g. 0,19")->delimiter(',');
   pin_cmd->add_option("--unpin", unpins, "Particles to free")->delimiter(',');
+  scene_options(pin_cmd, common);
+
+  WatchOptions watch_options;
+  CLI::App* watch_cmd =
+      app.add_subcommand("watch", "Save streamed frames as OBJ, PLY or VTK files");
+  watch_cmd->add_option("--frames", watch_options.frames, "How many frames")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  watch_cmd->add_option("--out", watch_options.out_dir, "Directory for the files")
+      ->capture_default_str();
+  watch_cmd->add_option("--format", watch_options.format, "obj, ply or vtk (a ParaView series)")
+      ->capture_default_str();
+  watch_cmd->add_option("--rate", watch_options.rate,
+                        "Frames per second to ask for (0: the server's default)");
+  watch_cmd->add_flag("--normals", watch_options.normals, "Ask for vertex normals too");
+  watch_cmd->add_flag("--quantized", watch_options.quantized, "16-bit positions");
+  watch_cmd->add_flag("--deltas", watch_options.deltas,
+                      "16-bit deltas against acknowledged frames");
+  watch_cmd->add_option("--bodies", watch_options.bodies, "Only these bodies, e.g. 0,2")
+      ->delimiter(',');
+  scene_options(watch_cmd, common);
+
+  DeviceOptions device;
+  CLI::App* touch_cmd = app.add_subcommand(
+      "touch", "Drive a haptic proxy: one update --at a point, or a scripted --path at 1 kHz");
+  touch_cmd->add_option("--at", device.at, "A single update at X,Y,Z")->delimiter(',')->expected(3);
+  path_options(touch_cmd, device);
+  touch_cmd->add_option("--log", device.log,
+                        "Write every update's force, contact and round trip (CSV)");
+  scene_options(touch_cmd, common);
+
+  CLI::App* grab_cmd = app.add_subcommand(
+      "grab", "Press from --from to --to with the grab button held, dragging what it touches");
+  path_options(grab_cmd, device);
+  grab_cmd->add_option("--log", device.log, "Write every update (CSV)");
+  scene_options(grab_cmd, common);
+
+  std::string record_out;
+  CLI::App* record_cmd = app.add_subcommand(
+      "record",
+      "Run a scripted path and record the device and its contacts (feltd run --replay reads it)");
+  path_options(record_cmd, device);
+  record_cmd->add_option("--out", record_out, "Recording CSV")->required();
+  scene_options(record_cmd, common);
+
+  std::string replay_file;
+  double tolerance = 1e-6;
+  CLI::App* replay_cmd = app.add_subcommand(
+      "replay", "Drive a proxy through a recording and count collision-equivalent updates");
+  replay_cmd->add_option("recording", replay_file, "A recording CSV")
+      ->required()
+      ->check(CLI::ExistingFile);
+  replay_cmd->add_option("--tolerance", tolerance, "Proxy distance that still counts as equal, m")
+      ->capture_default_str();
+  scene_options(replay_cmd, common);
+
+  BenchOptions bench;
+  CLI::App* bench_cmd =
+      app.add_subcommand("bench-latency", "Measure the haptic round trip at 1 kHz");
+  bench_cmd->add_option("--seconds", bench.seconds, "How long")->capture_default_str();
+  bench_cmd->add_option("--rate", bench.rate, "Updates per second per client")
+      ->capture_default_str();
+  bench_cmd->add_option("--clients", bench.clients, "Clients at once")->capture_default_str();
+  bench_cmd->add_option("--frame-rate", bench.frame_rate, "Frames each client streams (0: none)")
+      ->capture_default_str();
+  bench_cmd->add_flag("--quantized", bench.quantized, "Stream 16-bit frames");
+  bench_cmd->add_flag("--deltas", bench.deltas, "Stream 16-bit deltas");
+  bench_cmd->add_option("--at", bench.at, "Where the devices hold their proxies X,Y,Z")
+      ->delimiter(',')
+      ->expected(3);
+  bench_cmd->add_option("--csv", bench.csv, "Every round trip (CSV)");
+  scene_options(bench_cmd, common);
 
   CLI11_PARSE(app, argc, argv);
   try {
-    if (app.got_subcommand("hello")) return hello(common);
-    if (watch_cmd->parsed()) return watch(common, frames, out_dir, rate, normals);
+    if (hello_cmd->parsed()) return hello(common);
+    if (scenes_cmd->parsed()) return list_scenes(common);
+    if (stats_cmd->parsed()) return stats(common);
+    if (load_cmd->parsed()) {
+      if (load_options.name.empty() == load_options.json_file.empty()) {
+        std::cerr << "felt: load takes a scene name or --json FILE\n";
+        return 2;
+      }
+      return load(common, load_options);
+    }
+    if (cloth_cmd->parsed()) return add_cloth(common, cloth, body_json);
+    if (solid_cmd->parsed()) return add_solid(common, solid, body_json);
+    if (remove_cmd->parsed()) return remove_body(common, body);
     if (set_cmd->parsed()) {
       parameters.set_body_id(body);
       if (*integrator_opt) parameters.set_integrator(integrator);
@@ -179,10 +210,23 @@ int main(int argc, char** argv) {
       if (*shear_opt) parameters.set_shear_stiffness(shear);
       if (*bend_opt) parameters.set_bend_stiffness(bend);
       if (*strain_opt) parameters.set_max_strain(max_strain);
+      if (*damping_opt) parameters.set_damping(damping);
+      if (*friction_opt) parameters.set_friction(friction);
       return set(common, parameters);
     }
     if (pin_cmd->parsed()) return pin(common, body, pins, unpins);
-    return touch(common, at, proxy);
+    if (watch_cmd->parsed()) return watch(common, watch_options);
+    if (touch_cmd->parsed()) {
+      if (device.at.empty() && device.path.empty()) {
+        std::cerr << "felt: touch needs --at X,Y,Z or --path\n";
+        return 2;
+      }
+      return touch(common, device);
+    }
+    if (grab_cmd->parsed()) return grab(common, device);
+    if (record_cmd->parsed()) return record(common, device, record_out);
+    if (replay_cmd->parsed()) return replay(common, replay_file, tolerance);
+    return bench_latency(common, bench);
   } catch (const felt::client::ClientError& e) {
     std::cerr << "felt: " << e.what() << "\n";
     return 1;

@@ -1,5 +1,7 @@
 #include "felt_client.hpp"
 
+#include <algorithm>
+
 #include "wire/message_codec.hpp"
 
 namespace felt::client {
@@ -105,12 +107,17 @@ std::optional<v1::ServerMessage> Client::receive(std::chrono::milliseconds timeo
   }
 }
 
-v1::ServerMessage Client::request(v1::ClientMessage& message) {
+std::uint64_t Client::send(v1::ClientMessage& message) {
   const std::uint64_t id = next_request_id_++;
   message.set_request_id(id);
   std::string bytes;
   wire::append_message(bytes, message);
   send_raw(bytes);
+  return id;
+}
+
+v1::ServerMessage Client::request(v1::ClientMessage& message) {
+  const std::uint64_t id = send(message);
   const auto deadline = std::chrono::steady_clock::now() + reply_timeout_;
   while (true) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
@@ -157,68 +164,30 @@ std::optional<v1::Frame> Client::next_frame(std::chrono::milliseconds timeout) {
   return frame;
 }
 
-v1::Welcome Client::hello(const std::string& client_name, const std::string& token) {
-  v1::ClientMessage message;
-  v1::Hello* hello = message.mutable_hello();
-  hello->set_protocol_version(1);
-  hello->set_client_name(client_name);
-  hello->set_token(token);
-  return request(message).welcome();
+std::optional<v1::SceneEvent> Client::wait_event(v1::EventKind kind,
+                                                 std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (true) {
+    const auto it = std::find_if(events_.begin(), events_.end(),
+                                 [kind](const v1::SceneEvent& e) { return e.kind() == kind; });
+    if (it != events_.end()) {
+      v1::SceneEvent event = std::move(*it);
+      events_.erase(it);
+      return event;
+    }
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) return std::nullopt;
+    auto message = receive(left);
+    if (!message) return std::nullopt;
+    keep_streamed(*message);
+  }
 }
 
-v1::SceneLoaded Client::load_scene_by_name(const std::string& name) {
-  v1::ClientMessage message;
-  message.mutable_load_scene()->set_name(name);
-  return request(message).scene_loaded();
-}
-
-v1::SceneLoaded Client::load_scene_json(const std::string& json) {
-  v1::ClientMessage message;
-  message.mutable_load_scene()->set_json(json);
-  return request(message).scene_loaded();
-}
-
-v1::Subscribed Client::subscribe_frames(double max_rate_hz, bool normals) {
-  v1::ClientMessage message;
-  message.mutable_subscribe_frames()->set_max_rate_hz(max_rate_hz);
-  message.mutable_subscribe_frames()->set_normals(normals);
-  return request(message).subscribed();
-}
-
-v1::ForceUpdate Client::proxy_update(std::uint32_t proxy_id, const Point& position,
-                                     std::uint32_t buttons) {
-  v1::ClientMessage message;
-  v1::ProxyUpdate* update = message.mutable_proxy_update();
-  update->set_proxy_id(proxy_id);
-  update->mutable_position()->set_x(position[0]);
-  update->mutable_position()->set_y(position[1]);
-  update->mutable_position()->set_z(position[2]);
-  update->set_buttons(buttons);
-  update->set_client_time_us(
-      static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::microseconds>(
-                                     std::chrono::steady_clock::now().time_since_epoch())
-                                     .count()));
-  return request(message).force_update();
-}
-
-}  // namespace felt::client
-
-namespace felt::client {
-
-v1::BodyUpdated Client::set_body_parameters(const v1::SetBodyParameters& parameters) {
-  v1::ClientMessage message;
-  *message.mutable_set_body_parameters() = parameters;
-  return request(message).body_updated();
-}
-
-v1::BodyUpdated Client::pin_particles(std::uint32_t body_id, const std::vector<std::uint32_t>& pin,
-                                      const std::vector<std::uint32_t>& unpin) {
-  v1::ClientMessage message;
-  v1::PinParticles* pins = message.mutable_pin_particles();
-  pins->set_body_id(body_id);
-  for (std::uint32_t p : pin) pins->add_pin(p);
-  for (std::uint32_t p : unpin) pins->add_unpin(p);
-  return request(message).body_updated();
+std::uint64_t steady_microseconds() {
+  return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::microseconds>(
+                                        std::chrono::steady_clock::now().time_since_epoch())
+                                        .count());
 }
 
 }  // namespace felt::client

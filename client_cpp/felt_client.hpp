@@ -31,6 +31,15 @@ class ClientError : public std::runtime_error {
 
 using Point = std::array<double, 3>;
 
+/// What SubscribeFrames asks for.
+struct FrameSubscription {
+  double max_rate_hz = 0;  ///< 0: the server's default
+  bool normals = false;
+  std::vector<std::uint32_t> body_ids;  ///< empty: every body
+  bool quantized = false;               ///< 16-bit positions (and normals)
+  bool deltas = false;                  ///< quantized only: changes against acknowledged frames
+};
+
 class Client {
  public:
   Client();
@@ -42,23 +51,63 @@ class Client {
   void close();
 
   felt::v1::Welcome hello(const std::string& client_name, const std::string& token = "");
-  felt::v1::SceneLoaded load_scene_by_name(const std::string& name);
-  felt::v1::SceneLoaded load_scene_json(const std::string& json);
-  felt::v1::Subscribed subscribe_frames(double max_rate_hz = 0, bool normals = false);
-  felt::v1::ForceUpdate proxy_update(std::uint32_t proxy_id, const Point& position,
-                                     std::uint32_t buttons = 0);
+  felt::v1::Stats stats();
+
+  // scenes
+  felt::v1::SceneList list_scenes();
+  felt::v1::SceneLoaded load_scene_by_name(const std::string& name, bool shared = false);
+  felt::v1::SceneLoaded load_scene_json(const std::string& json, bool shared = false);
+  felt::v1::SceneLoaded create_scene(const felt::v1::CreateScene& create);
+  felt::v1::SceneLoaded join_scene(std::uint64_t scene_id);
+  felt::v1::SceneLeft leave_scene();
+  felt::v1::SceneDestroyed destroy_scene(std::uint64_t scene_id = 0);
+  felt::v1::SceneStatus pause();
+  felt::v1::SceneStatus resume();
+  felt::v1::SceneStatus step(std::uint32_t steps);
+  felt::v1::SceneStatus set_time_scale(double scale);
+  felt::v1::SceneStatus reset();
+  felt::v1::StateSaved save_state(bool include_data = false);
+  felt::v1::SceneStatus restore_state(std::uint32_t state_id);
+  felt::v1::SceneStatus restore_state(const felt::v1::SceneState& state);
+
+  // bodies
+  felt::v1::BodyAdded add_body(const std::string& body_json);
+  felt::v1::BodyAdded add_collider(const std::string& collider_json);
+  felt::v1::BodyRemoved remove_body(std::uint32_t body_id);
   felt::v1::BodyUpdated set_body_parameters(const felt::v1::SetBodyParameters& parameters);
   felt::v1::BodyUpdated pin_particles(std::uint32_t body_id, const std::vector<std::uint32_t>& pin,
                                       const std::vector<std::uint32_t>& unpin);
+  felt::v1::BodyUpdated apply_force(std::uint32_t body_id,
+                                    const std::vector<std::uint32_t>& vertices, const Point& force,
+                                    double duration);
+
+  // haptics
+  felt::v1::ProxyOpened open_proxy(const felt::v1::ProxySettings& settings = {});
+  felt::v1::ProxyClosed close_proxy(std::uint32_t proxy_id);
+  felt::v1::ForceUpdate proxy_update(std::uint32_t proxy_id, const Point& position,
+                                     std::uint32_t buttons = 0);
+
+  // frames
+  felt::v1::Subscribed subscribe_frames(double max_rate_hz = 0, bool normals = false);
+  felt::v1::Subscribed subscribe_frames(const FrameSubscription& subscription);
+  felt::v1::Unsubscribed unsubscribe_frames();
+  felt::v1::FrameAcked ack_frame(std::uint64_t sequence);
+  /// Acknowledges a frame without waiting for the reply (which is skipped when it comes).
+  void ack_frame_async(std::uint64_t sequence);
 
   /// The next frame, or nothing if none came within `timeout`.
   std::optional<felt::v1::Frame> next_frame(std::chrono::milliseconds timeout);
   /// The scene events received so far (with replies and frames), oldest first; forgets them.
   std::vector<felt::v1::SceneEvent> take_events();
+  /// Waits up to `timeout` for an event of `kind` (keeping the others for take_events()).
+  std::optional<felt::v1::SceneEvent> wait_event(felt::v1::EventKind kind,
+                                                 std::chrono::milliseconds timeout);
 
   /// Sends `message` with a fresh request id and returns the reply with that id. An Error
   /// reply throws ClientError.
   felt::v1::ServerMessage request(felt::v1::ClientMessage& message);
+  /// Sends `message` with a fresh request id and returns the id, without waiting.
+  std::uint64_t send(felt::v1::ClientMessage& message);
 
   /// Sends raw bytes (protocol tests use this to send garbage).
   void send_raw(const std::string& bytes);
@@ -80,5 +129,8 @@ class Client {
   std::uint64_t next_request_id_ = 1;
   std::chrono::milliseconds reply_timeout_ = std::chrono::seconds(10);
 };
+
+/// Microseconds of the client's steady clock: what ProxyUpdate.client_time_us carries.
+std::uint64_t steady_microseconds();
 
 }  // namespace felt::client

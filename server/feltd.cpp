@@ -67,8 +67,8 @@ int serve(const ServeOptions& options) {
     return 2;
   }
   felt::SceneRegistry scenes;
-  felt::net::ServerContext context{
-      scenes, felt::SceneDirectory(options.scene_dir), options.limits, FELT_VERSION};
+  felt::net::ServerContext context{scenes, felt::SceneDirectory(options.scene_dir), options.limits,
+                                   FELT_VERSION};
   for (const std::string& file : options.scenes) {
     auto document = felt::read_scene_json(file);
     auto scene = document ? felt::load_scene(*document, scene_options(options.scene_dir))
@@ -83,9 +83,9 @@ int serve(const ServeOptions& options) {
         [document = std::move(*document), load_options = scene_options(options.scene_dir)] {
           return felt::load_scene(document, load_options);
         },
-        felt::SceneLimits{options.limits.max_bodies_per_scene,
-                          std::max<std::uint64_t>(options.limits.max_particles_per_scene,
-                                                  4'000'000)});
+        felt::SceneLimits{
+            options.limits.max_bodies_per_scene,
+            std::max<std::uint64_t>(options.limits.max_particles_per_scene, 4'000'000)});
     runner->start();
     const SceneId id = scenes.add(std::move(runner));
     if (context.default_scene == 0) context.default_scene = id;
@@ -354,7 +354,9 @@ int main(int argc, char** argv) {
                    "Unread reply bytes after which a client is disconnected")
       ->check(CLI::Range(64 * 1024, 1 << 30))
       ->capture_default_str();
-  serve_cmd->add_option("--max-frame-rate", limits.max_frame_rate_hz, "Frames per second, per subscription")
+  serve_cmd
+      ->add_option("--max-frame-rate", limits.max_frame_rate_hz,
+                   "Frames per second, per subscription")
       ->check(CLI::Range(1.0, 1000.0))
       ->capture_default_str();
 

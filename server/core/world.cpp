@@ -27,9 +27,8 @@ std::uint16_t generation_of(BodyId id) {
 }  // namespace
 
 BodyId World::allocate(BodyRef ref) {
-  auto free = std::find_if(slots_.begin(), slots_.end(), [](const Slot& s) {
-    return !s.live && s.generation < kLastGeneration;
-  });
+  auto free = std::find_if(slots_.begin(), slots_.end(),
+                           [](const Slot& s) { return !s.live && s.generation < kLastGeneration; });
   if (free == slots_.end()) {
     FELT_CHECK(slots_.size() <= kSlotMask);
     free = slots_.insert(slots_.end(), Slot{});

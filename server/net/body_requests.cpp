@@ -11,12 +11,12 @@ namespace felt::net {
 namespace {
 
 // beyond these a value is a mistake, not a material
-constexpr double kMaxStiffness = 1e8;   // N/m
-constexpr double kMaxDamping = 1e6;     // N·s/m, or s for FEM's Rayleigh damping
+constexpr double kMaxStiffness = 1e8;  // N/m
+constexpr double kMaxDamping = 1e6;    // N·s/m, or s for FEM's Rayleigh damping
 constexpr double kMaxStrain = 10;
 constexpr double kMaxFriction = 10;
-constexpr double kMaxForce = 1e6;        // N per vertex
-constexpr double kMaxDuration = 3600;    // s
+constexpr double kMaxForce = 1e6;      // N per vertex
+constexpr double kMaxDuration = 3600;  // s
 
 bool in_range(double x, double lo, double hi) {
   return std::isfinite(x) && x >= lo && x <= hi;
@@ -44,9 +44,10 @@ std::string check_parameters(const v1::SetBodyParameters& set, const std::string
   if (set.has_drag() && !in_range(set.drag(), 0, kMaxDamping)) {
     return range("drag", 0, kMaxDamping);
   }
-  for (const auto& [given, k] : {std::pair{set.has_structural_stiffness(), set.structural_stiffness()},
-                                 std::pair{set.has_shear_stiffness(), set.shear_stiffness()},
-                                 std::pair{set.has_bend_stiffness(), set.bend_stiffness()}}) {
+  for (const auto& [given, k] :
+       {std::pair{set.has_structural_stiffness(), set.structural_stiffness()},
+        std::pair{set.has_shear_stiffness(), set.shear_stiffness()},
+        std::pair{set.has_bend_stiffness(), set.bend_stiffness()}}) {
     if (given && !(k > 0 && in_range(k, 0, kMaxStiffness))) {
       return range("stiffness", 0, kMaxStiffness) + " and > 0";
     }

@@ -79,10 +79,10 @@ void FrameStream::put_quantized(const BodySnapshot& body, const BodyRecord* base
                                 BodyRecord& record, felt::v1::BodyFrame& out) {
   to_floats(body.positions, scratch_);
   // a delta keeps its base's bounds; a body that moved out of them gets a key frame
-  const bool delta = base && base->positions.size() == scratch_.size() &&
-                     wire::fits(scratch_, base->bounds);
-  record.bounds = delta ? base->bounds : wire::bounds_around(scratch_, kBoundsMargin,
-                                                             kMinBoundsMargin);
+  const bool delta =
+      base && base->positions.size() == scratch_.size() && wire::fits(scratch_, base->bounds);
+  record.bounds =
+      delta ? base->bounds : wire::bounds_around(scratch_, kBoundsMargin, kMinBoundsMargin);
   wire::quantize(scratch_, record.bounds, record.positions);
   felt::v1::QuantizedVectors& positions = *out.mutable_quantized_positions();
   put_bounds(record.bounds, positions);

@@ -34,8 +34,8 @@ std::expected<ProxySettings, std::string> merge(const v1::ProxySettings& setting
       {settings.has_damping(), settings.damping(), 0, 1000, false, "damping", out.damping},
       {settings.has_max_force_change(), settings.max_force_change(), 0, 1000, false,
        "max_force_change", out.max_force_change},
-      {settings.has_static_friction(), settings.static_friction(), 0, 10, false,
-       "static_friction", out.static_friction},
+      {settings.has_static_friction(), settings.static_friction(), 0, 10, false, "static_friction",
+       out.static_friction},
       {settings.has_dynamic_friction(), settings.dynamic_friction(), 0, 10, false,
        "dynamic_friction", out.dynamic_friction},
   };
@@ -45,8 +45,8 @@ std::expected<ProxySettings, std::string> merge(const v1::ProxySettings& setting
                     (f.open_below ? f.value > f.lo : f.value >= f.lo);
     if (!ok) {
       std::ostringstream why;
-      why << f.name << " must be a finite number in " << (f.open_below ? "(" : "[") << f.lo
-          << ", " << f.hi << "]";
+      why << f.name << " must be a finite number in " << (f.open_below ? "(" : "[") << f.lo << ", "
+          << f.hi << "]";
       return std::unexpected(why.str());
     }
     f.target = f.value;

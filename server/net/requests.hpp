@@ -57,8 +57,7 @@ void handle_unsubscribe(Session& session, std::uint64_t id);
 void handle_ack_frame(Session& session, std::uint64_t id, const v1::AckFrame& ack);
 
 /// Sends the reply `fill` writes.
-void reply(Session& session, std::uint64_t id,
-           const std::function<void(v1::ServerMessage&)>& fill);
+void reply(Session& session, std::uint64_t id, const std::function<void(v1::ServerMessage&)>& fill);
 
 /// A reply deferred past the session's turn, or null after answering LIMIT_EXCEEDED.
 std::shared_ptr<PendingReply> defer_or_refuse(Session& session, std::uint64_t id);

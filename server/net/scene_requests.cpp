@@ -22,7 +22,7 @@ std::string too_many_scenes(const ServerContext& context) {
 
 /// Reads and builds the scene `read` gives on the loader thread, starts it and joins the
 /// session to it; the reply is SceneLoaded or the error.
-void start_scene(Session& session, std::uint64_t id, DocumentSource read, bool shared) {
+void start_scene(Session& session, std::uint64_t id, DocumentSource read, bool shared, bool keep) {
   ServerContext& context = session.context();
   if (context.scenes.size() >= context.options.max_scenes) {
     session.send_error(id, v1::ERROR_CODE_LIMIT_EXCEEDED, too_many_scenes(context));
@@ -33,7 +33,7 @@ void start_scene(Session& session, std::uint64_t id, DocumentSource read, bool s
   const ClientId client = session.client_id();
   std::weak_ptr<Session> weak = session.weak_from_this();
   boost::asio::post(context.loader, [&context, pending, weak, client, read = std::move(read),
-                                     shared] {
+                                     shared, keep] {
     SceneLoadOptions options;
     options.max_particles = context.options.max_particles_per_scene;
     options.asset_root = context.scene_directory.root();
@@ -59,7 +59,7 @@ void start_scene(Session& session, std::uint64_t id, DocumentSource read, bool s
       return;
     }
     auto runner = std::make_shared<SceneRunner>(
-        std::move(*scene), SceneAccess{client, shared, false},
+        std::move(*scene), SceneAccess{client, shared, keep},
         [document = std::move(*document), options] { return load_scene(document, options); },
         SceneLimits{context.options.max_bodies_per_scene, context.options.max_particles_per_scene});
     runner->start();
@@ -132,7 +132,7 @@ void handle_load_scene(Session& session, std::uint64_t id, const v1::LoadScene& 
             }
             return std::unexpected(ReadError{v1::ERROR_CODE_BAD_SCENE, std::move(message)});
           },
-          load.shared());
+          load.shared(), load.keep());
       return;
     case v1::LoadScene::kJson:
       start_scene(
@@ -142,7 +142,7 @@ void handle_load_scene(Session& session, std::uint64_t id, const v1::LoadScene& 
             if (document) return std::move(*document);
             return std::unexpected(ReadError{v1::ERROR_CODE_BAD_SCENE, document.error().what()});
           },
-          load.shared());
+          load.shared(), load.keep());
       return;
     case v1::LoadScene::SOURCE_NOT_SET:
       session.send_error(id, v1::ERROR_CODE_BAD_REQUEST, "LoadScene needs a name or json");
@@ -159,7 +159,7 @@ void handle_create_scene(Session& session, std::uint64_t id, const v1::CreateSce
   // the scene loader checks every value as it checks a file's
   start_scene(
       session, id, [document]() -> std::expected<json, ReadError> { return document; },
-      create.shared());
+      create.shared(), create.keep());
 }
 
 void handle_join_scene(Session& session, std::uint64_t id, const v1::JoinScene& join) {
@@ -192,7 +192,7 @@ void handle_destroy_scene(Session& session, std::uint64_t id, const v1::DestroyS
     session.send_error(id, v1::ERROR_CODE_UNKNOWN_ID, "no scene " + std::to_string(scene_id));
     return;
   }
-  if (scene->access().persistent) {
+  if (scene->access().owner == 0) {
     session.send_error(id, v1::ERROR_CODE_PERMISSION_DENIED,
                        "the server's own scenes cannot be destroyed");
     return;

@@ -27,7 +27,7 @@ struct ServerOptions {
   std::size_t max_requests_in_flight = 16;  ///< per client: loads, steps, saves not yet answered
   std::size_t max_bodies_per_scene = 256;
   std::size_t max_particles_per_scene = 250'000;  ///< in scenes clients load or build
-  std::string token;  ///< when not empty, Hello must carry it
+  std::string token;                              ///< when not empty, Hello must carry it
 };
 
 struct ServerContext {

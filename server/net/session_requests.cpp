@@ -7,11 +7,10 @@ namespace {
 
 // what the server does, for clients that check before they ask
 constexpr const char* kCapabilities[] = {
-    "scenes.list",   "scenes.load",       "scenes.create", "scenes.join",
-    "scenes.control", "scenes.state",     "bodies.add",    "bodies.remove",
-    "bodies.set",    "bodies.pin",        "bodies.force",  "haptics.proxy",
-    "haptics.grab",  "frames.float32",    "frames.quantized16", "frames.deltas",
-    "events",        "stats"};
+    "scenes.list",   "scenes.load",   "scenes.create", "scenes.join",    "scenes.control",
+    "scenes.state",  "bodies.add",    "bodies.remove", "bodies.set",     "bodies.pin",
+    "bodies.force",  "haptics.proxy", "haptics.grab",  "frames.float32", "frames.quantized16",
+    "frames.deltas", "events",        "stats"};
 constexpr std::size_t kMaxClientName = 100;
 
 // Compares without an early exit, so the time taken does not reveal how much of a guess was

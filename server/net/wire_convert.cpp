@@ -28,18 +28,30 @@ std::expected<std::vector<Vec3>, std::string> to_vectors(
 v1::EventKind event_kind(SceneEvent::Kind kind) {
   using K = SceneEvent::Kind;
   switch (kind) {
-    case K::kUnrecoverableStep: return v1::EVENT_KIND_UNRECOVERABLE_STEP;
-    case K::kBodyAdded: return v1::EVENT_KIND_BODY_ADDED;
-    case K::kBodyRemoved: return v1::EVENT_KIND_BODY_REMOVED;
-    case K::kBodyChanged: return v1::EVENT_KIND_BODY_CHANGED;
-    case K::kPaused: return v1::EVENT_KIND_SCENE_PAUSED;
-    case K::kResumed: return v1::EVENT_KIND_SCENE_RESUMED;
-    case K::kReset: return v1::EVENT_KIND_SCENE_RESET;
-    case K::kStateRestored: return v1::EVENT_KIND_STATE_RESTORED;
-    case K::kTimeScale: return v1::EVENT_KIND_TIME_SCALE;
-    case K::kDestroyed: return v1::EVENT_KIND_SCENE_DESTROYED;
-    case K::kClientJoined: return v1::EVENT_KIND_CLIENT_JOINED;
-    case K::kClientLeft: return v1::EVENT_KIND_CLIENT_LEFT;
+    case K::kUnrecoverableStep:
+      return v1::EVENT_KIND_UNRECOVERABLE_STEP;
+    case K::kBodyAdded:
+      return v1::EVENT_KIND_BODY_ADDED;
+    case K::kBodyRemoved:
+      return v1::EVENT_KIND_BODY_REMOVED;
+    case K::kBodyChanged:
+      return v1::EVENT_KIND_BODY_CHANGED;
+    case K::kPaused:
+      return v1::EVENT_KIND_SCENE_PAUSED;
+    case K::kResumed:
+      return v1::EVENT_KIND_SCENE_RESUMED;
+    case K::kReset:
+      return v1::EVENT_KIND_SCENE_RESET;
+    case K::kStateRestored:
+      return v1::EVENT_KIND_STATE_RESTORED;
+    case K::kTimeScale:
+      return v1::EVENT_KIND_TIME_SCALE;
+    case K::kDestroyed:
+      return v1::EVENT_KIND_SCENE_DESTROYED;
+    case K::kClientJoined:
+      return v1::EVENT_KIND_CLIENT_JOINED;
+    case K::kClientLeft:
+      return v1::EVENT_KIND_CLIENT_LEFT;
   }
   return v1::EVENT_KIND_UNSPECIFIED;
 }
@@ -68,12 +80,18 @@ void fill_error(std::uint64_t request_id, v1::ErrorCode code, const std::string&
 v1::ErrorCode error_code(RunnerError::Code code) {
   using C = RunnerError::Code;
   switch (code) {
-    case C::kBadRequest: return v1::ERROR_CODE_BAD_REQUEST;
-    case C::kUnknownId: return v1::ERROR_CODE_UNKNOWN_ID;
-    case C::kWrongState: return v1::ERROR_CODE_WRONG_STATE;
-    case C::kLimitExceeded: return v1::ERROR_CODE_LIMIT_EXCEEDED;
-    case C::kCancelled: return v1::ERROR_CODE_CANCELLED;
-    case C::kBadScene: return v1::ERROR_CODE_BAD_SCENE;
+    case C::kBadRequest:
+      return v1::ERROR_CODE_BAD_REQUEST;
+    case C::kUnknownId:
+      return v1::ERROR_CODE_UNKNOWN_ID;
+    case C::kWrongState:
+      return v1::ERROR_CODE_WRONG_STATE;
+    case C::kLimitExceeded:
+      return v1::ERROR_CODE_LIMIT_EXCEEDED;
+    case C::kCancelled:
+      return v1::ERROR_CODE_CANCELLED;
+    case C::kBadScene:
+      return v1::ERROR_CODE_BAD_SCENE;
   }
   return v1::ERROR_CODE_INTERNAL;
 }
@@ -94,7 +112,7 @@ void fill_event(SceneId scene, const SceneEvent& event, v1::SceneEvent& out) {
   out.set_kind(event_kind(event.kind));
   out.set_step(event.step);
   out.set_sim_time(event.sim_time);
-  out.set_count(event.unrecoverable_steps);
+  out.set_count(event.count);
   for (BodyId id : event.body_ids) out.add_body_ids(id);
   out.set_client_id(event.client);
   out.set_client_name(event.client_name);
@@ -146,8 +164,8 @@ std::expected<std::shared_ptr<const WorldState>, std::string> to_state(
     auto velocities = to_vectors(b.velocities(), "velocities");
     auto previous = to_vectors(b.previous_positions(), "previous_positions");
     for (auto* vectors : {&positions, &velocities, &previous}) {
-      if (!*vectors) return std::unexpected("body " + std::to_string(b.body_id()) + ": " +
-                                            vectors->error());
+      if (!*vectors)
+        return std::unexpected("body " + std::to_string(b.body_id()) + ": " + vectors->error());
     }
     body.positions = std::move(*positions);
     body.velocities = std::move(*velocities);

@@ -17,11 +17,11 @@ using ClientId = std::uint32_t;
 struct BodyInfo {
   BodyId body_id = 0;
   std::string name;
-  std::string kind;  ///< "cloth", "solid" or "collider"
+  std::string kind;             ///< "cloth", "solid" or "collider"
   std::uint32_t particles = 0;  ///< vertices clients see
   std::uint32_t triangles = 0;
   std::uint32_t nodes = 0;  ///< what pins and states index: a cloth's particles, a solid's nodes
-  ClientId owner = 0;  ///< the client that added it (the scene's loader for its own bodies)
+  ClientId owner = 0;       ///< the client that added it (the scene's loader for its own bodies)
 };
 
 struct BodyCatalog {

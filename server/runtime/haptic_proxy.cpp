@@ -52,8 +52,8 @@ ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec
     grab_ = Grab{out.contact.body_id, corners[nearest]};
   }
   // a grabbed body that is gone (removed, or the scene reset) ends the grab too
-  if (grab_ && (!surface.find(grab_->body) ||
-                grab_->vertex >= surface.find(grab_->body)->to.size())) {
+  if (grab_ &&
+      (!surface.find(grab_->body) || grab_->vertex >= surface.find(grab_->body)->to.size())) {
     grab_.reset();
   }
 

@@ -15,6 +15,8 @@ struct SceneEvent {
     /// the step and brought to rest (core/world.hpp). Coalesced, so an exploding scene reports
     /// at most twice a second rather than every step.
     kUnrecoverableStep,
+    /// steps some body took only with substeps after its step failed; coalesced the same way
+    kRescuedStep,
     kBodyAdded,
     kBodyRemoved,
     kBodyChanged,
@@ -31,8 +33,8 @@ struct SceneEvent {
   std::uint64_t sequence = 0;  ///< 1, 2, ... per scene
   std::uint64_t step = 0;      ///< the scene's step count when it was reported
   double sim_time = 0;
-  std::uint64_t unrecoverable_steps = 0;  ///< kUnrecoverableStep: since the previous event
-  std::vector<BodyId> body_ids;           ///< the bodies concerned
+  std::uint64_t count = 0;  ///< kUnrecoverableStep, kRescuedStep: such steps since the last one
+  std::vector<BodyId> body_ids;  ///< the bodies concerned
   std::vector<BodyInfo> bodies;  ///< kBodyAdded: the new body; kReset: every body now
   ClientId client = 0;           ///< whose request caused it (0: the server)
   std::string client_name;

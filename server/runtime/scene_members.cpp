@@ -19,6 +19,12 @@ std::size_t SceneMembers::count() const {
   return members_.size();
 }
 
+bool SceneMembers::contains(ClientId client) const {
+  std::lock_guard lock(mutex_);
+  return std::any_of(members_.begin(), members_.end(),
+                     [client](const Member& m) { return m.client == client; });
+}
+
 std::string SceneMembers::name_of(ClientId client) const {
   std::lock_guard lock(mutex_);
   for (const Member& m : members_) {

@@ -29,6 +29,7 @@ class SceneMembers {
   void join(Member member);
   void leave(ClientId client);
   std::size_t count() const;
+  bool contains(ClientId client) const;
   /// The name `client` gave in its Hello, or empty.
   std::string name_of(ClientId client) const;
 

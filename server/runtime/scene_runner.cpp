@@ -12,7 +12,7 @@ using Seconds = std::chrono::duration<double>;
 // Lagging further than this behind the wall clock re-synchronises instead of catching up, so a
 // slow scene runs slower than real time rather than stepping in bursts.
 constexpr double kMaxLagSeconds = 0.1;
-// unstable steps are reported at most this often
+// rescued and unrecoverable steps are reported at most this often
 constexpr double kEventIntervalSeconds = 0.5;
 // real-time factor and step time are averaged over windows this long
 constexpr double kStatsWindowSeconds = 0.5;
@@ -37,8 +37,7 @@ std::size_t visible_particles(const SceneBody& body) {
 
 }  // namespace
 
-SceneRunner::SceneRunner(Scene scene, SceneAccess access, SceneReloader reload,
-                         SceneLimits limits)
+SceneRunner::SceneRunner(Scene scene, SceneAccess access, SceneReloader reload, SceneLimits limits)
     : scene_(std::move(scene)),
       name_(scene_.name),
       access_(access),
@@ -83,11 +82,11 @@ void SceneRunner::stop() {
 }
 
 bool SceneRunner::may_change(ClientId client, const BodyInfo& body) const {
-  return access_.shared || body.owner == client;
+  return access_.shared || body.owner == client || !members_.contains(body.owner);
 }
 
 bool SceneRunner::may_control(ClientId client) const {
-  return access_.shared || access_.owner == client;
+  return access_.shared || access_.owner == client || !members_.contains(access_.owner);
 }
 
 void SceneRunner::post(SceneCommand command, std::function<void()> cancel) {
@@ -176,8 +175,9 @@ void SceneRunner::set_time_scale(ClientId by, double scale, Completion<SceneStat
 void SceneRunner::reset(ClientId by, Completion<SceneStatus> done) {
   request<SceneStatus>(std::move(done), [this, by](Scene& scene, Completion<SceneStatus>& done) {
     if (!reload_) {
-      done(std::unexpected(error(RunnerError::Code::kWrongState,
-                                 "this scene was built by requests and has no source to reset to")));
+      done(
+          std::unexpected(error(RunnerError::Code::kWrongState,
+                                "this scene was built by requests and has no source to reset to")));
       return;
     }
     auto fresh = reload_();
@@ -223,22 +223,21 @@ void SceneRunner::restore(ClientId by, const WorldState& state, Completion<Scene
   done(status());
 }
 
-void SceneRunner::restore_state(ClientId by, std::uint32_t state_id,
-                                Completion<SceneStatus> done) {
-  request<SceneStatus>(std::move(done), [this, by, state_id](Scene&,
-                                                             Completion<SceneStatus>& done) {
-    const auto it = std::find_if(saved_.begin(), saved_.end(),
-                                 [state_id](const SavedState& s) { return s.id == state_id; });
-    if (it == saved_.end()) {
-      done(std::unexpected(error(RunnerError::Code::kUnknownId,
-                                 "no saved state " + std::to_string(state_id) +
-                                     " (a scene keeps its latest " +
-                                     std::to_string(kMaxSavedStates) + ")")));
-      return;
-    }
-    const auto state = it->state;
-    restore(by, *state, done);
-  });
+void SceneRunner::restore_state(ClientId by, std::uint32_t state_id, Completion<SceneStatus> done) {
+  request<SceneStatus>(
+      std::move(done), [this, by, state_id](Scene&, Completion<SceneStatus>& done) {
+        const auto it = std::find_if(saved_.begin(), saved_.end(),
+                                     [state_id](const SavedState& s) { return s.id == state_id; });
+        if (it == saved_.end()) {
+          done(std::unexpected(
+              error(RunnerError::Code::kUnknownId, "no saved state " + std::to_string(state_id) +
+                                                       " (a scene keeps its latest " +
+                                                       std::to_string(kMaxSavedStates) + ")")));
+          return;
+        }
+        const auto state = it->state;
+        restore(by, *state, done);
+      });
 }
 
 void SceneRunner::restore_state(ClientId by, std::shared_ptr<const WorldState> state,
@@ -255,9 +254,9 @@ void SceneRunner::add_body(ClientId by, SceneBody body, Completion<BodyInfo> don
                                                              Completion<BodyInfo>& done) {
     const auto catalog = bodies();
     if (catalog->bodies.size() >= limits_.max_bodies) {
-      done(std::unexpected(error(RunnerError::Code::kLimitExceeded,
-                                 "the scene already has " + std::to_string(limits_.max_bodies) +
-                                     " bodies")));
+      done(std::unexpected(
+          error(RunnerError::Code::kLimitExceeded,
+                "the scene already has " + std::to_string(limits_.max_bodies) + " bodies")));
       return;
     }
     const std::uint64_t particles = visible_particles(*shared_body);
@@ -268,8 +267,8 @@ void SceneRunner::add_body(ClientId by, SceneBody body, Completion<BodyInfo> don
                                      " the scene's particle limit leaves")));
       return;
     }
-    const BodyId id = std::visit(
-        [&](auto&& b) { return scene.world.add_body(std::move(b)); }, std::move(*shared_body));
+    const BodyId id = std::visit([&](auto&& b) { return scene.world.add_body(std::move(b)); },
+                                 std::move(*shared_body));
     owners_.emplace_back(id, by);
     publish_catalog();
     const BodyInfo info = *bodies()->find(id);
@@ -282,31 +281,31 @@ void SceneRunner::add_body(ClientId by, SceneBody body, Completion<BodyInfo> don
 }
 
 void SceneRunner::add_collider(ClientId by, const Collider& collider, Completion<BodyInfo> done) {
-  request<BodyInfo>(std::move(done), [this, by, collider](Scene& scene,
-                                                          Completion<BodyInfo>& done) {
-    if (bodies()->bodies.size() >= limits_.max_bodies) {
-      done(std::unexpected(error(RunnerError::Code::kLimitExceeded,
-                                 "the scene already has " + std::to_string(limits_.max_bodies) +
-                                     " bodies")));
-      return;
-    }
-    const BodyId id = scene.world.add_collider(collider);
-    owners_.emplace_back(id, by);
-    publish_catalog();
-    const BodyInfo info = *bodies()->find(id);
-    SceneEvent e = event(SceneEvent::Kind::kBodyAdded, by);
-    e.body_ids = {id};
-    e.bodies = {info};
-    members_.broadcast(std::move(e));
-    done(info);
-  });
+  request<BodyInfo>(
+      std::move(done), [this, by, collider](Scene& scene, Completion<BodyInfo>& done) {
+        if (bodies()->bodies.size() >= limits_.max_bodies) {
+          done(std::unexpected(
+              error(RunnerError::Code::kLimitExceeded,
+                    "the scene already has " + std::to_string(limits_.max_bodies) + " bodies")));
+          return;
+        }
+        const BodyId id = scene.world.add_collider(collider);
+        owners_.emplace_back(id, by);
+        publish_catalog();
+        const BodyInfo info = *bodies()->find(id);
+        SceneEvent e = event(SceneEvent::Kind::kBodyAdded, by);
+        e.body_ids = {id};
+        e.bodies = {info};
+        members_.broadcast(std::move(e));
+        done(info);
+      });
 }
 
 void SceneRunner::remove_body(ClientId by, BodyId body, Completion<BodyId> done) {
   request<BodyId>(std::move(done), [this, by, body](Scene& scene, Completion<BodyId>& done) {
     if (!scene.world.contains(body)) {
-      done(std::unexpected(
-          error(RunnerError::Code::kUnknownId, "no body " + std::to_string(body))));
+      done(
+          std::unexpected(error(RunnerError::Code::kUnknownId, "no body " + std::to_string(body))));
       return;
     }
     scene.world.remove_body(body);
@@ -411,25 +410,31 @@ void SceneRunner::step_once() {
   timed_forces_.apply(world);
   reactions_.apply_and_clear(world);
   const StepReport report = world.step();
-  if (report.flags & kStepRescued) ++window_rescued_;
+  if (report.flags & kStepRescued) {
+    ++window_rescued_;
+    ++rescued_.steps;
+  }
   if (report.flags & kStepUnrecoverable) {
     ++window_unrecoverable_;
-    ++unreported_;
-    failed_bodies_ = report.unrecoverable_bodies;
+    ++unrecoverable_.steps;
+    unrecoverable_.bodies = report.unrecoverable_bodies;
   }
 }
 
-void SceneRunner::report_unrecoverable(bool force) {
-  if (unreported_ == 0) return;
+void SceneRunner::report_health(bool force) {
   const auto now = Clock::now();
-  if (!force && Seconds(now - last_event_).count() < kEventIntervalSeconds) return;
-  SceneEvent e = event(SceneEvent::Kind::kUnrecoverableStep, 0);
-  e.unrecoverable_steps = unreported_;
-  e.body_ids = std::move(failed_bodies_);
-  members_.broadcast(std::move(e));
-  unreported_ = 0;
-  failed_bodies_.clear();
-  last_event_ = now;
+  for (auto [kind, unreported] : {std::pair{SceneEvent::Kind::kUnrecoverableStep, &unrecoverable_},
+                                  std::pair{SceneEvent::Kind::kRescuedStep, &rescued_}}) {
+    if (unreported->steps == 0) continue;
+    if (!force && Seconds(now - unreported->last_event).count() < kEventIntervalSeconds) continue;
+    SceneEvent e = event(kind, 0);
+    e.count = unreported->steps;
+    e.body_ids = std::move(unreported->bodies);
+    members_.broadcast(std::move(e));
+    unreported->steps = 0;
+    unreported->bodies.clear();
+    unreported->last_event = now;
+  }
 }
 
 void SceneRunner::run(std::stop_token stop) {
@@ -442,7 +447,7 @@ void SceneRunner::run(std::stop_token stop) {
   double window_sim_start = world.time();
   double window_step_seconds = 0;
   std::uint64_t window_steps = 0;
-  last_event_ = Clock::now() - std::chrono::hours(1);
+  unrecoverable_.last_event = rescued_.last_event = Clock::now() - std::chrono::hours(1);
 
   const auto timed_step = [&] {
     const Clock::time_point start = Clock::now();
@@ -492,7 +497,7 @@ void SceneRunner::run(std::stop_token stop) {
         stepped = true;
       }
     }
-    report_unrecoverable(false);
+    report_health(false);
     if (stepped || changed) {
       publish();
       publish_haptics(SteadyClock::now());
@@ -527,7 +532,7 @@ void SceneRunner::run(std::stop_token stop) {
     std::unique_lock lock(wake_mutex_);
     wake_.wait_until(lock, stop, due, [this] { return !commands_.empty(); });
   }
-  report_unrecoverable(true);
+  report_health(true);
 }
 
 }  // namespace felt

@@ -47,9 +47,9 @@ struct RunnerStats {
 
 /// Who may do what in a scene, fixed when it is created.
 struct SceneAccess {
-  ClientId owner = 0;  ///< the client that loaded or created it; 0: the server
-  bool shared = false;  ///< anyone in it may change any body and control the scene
-  bool persistent = false;  ///< stays when its last client leaves (the server's own scenes)
+  ClientId owner = 0;       ///< the client that loaded or created it; 0: the server
+  bool shared = false;      ///< anyone in it may change any body and control the scene
+  bool persistent = false;  ///< stays when its last client leaves (the server's own, or kept)
 };
 
 /// Where the scene came from, to build it again for a reset (null: it cannot be reset).
@@ -100,9 +100,11 @@ class SceneRunner {
   /// The scene's bodies now (never null). A body a request added is in it before the request's
   /// completion runs.
   std::shared_ptr<const BodyCatalog> bodies() const { return catalog_.load(); }
-  /// Whether `client` may change body `body` (its owner, or anyone in a shared scene).
+  /// Whether `client` may change body `body`: its owner, or anyone in a shared scene or once
+  /// the owner has left the scene.
   bool may_change(ClientId client, const BodyInfo& body) const;
-  /// Whether `client` may pause, step, reset or destroy the scene.
+  /// Whether `client` may pause, step, reset or destroy the scene: by the same rule, with the
+  /// client that loaded the scene as its owner.
   bool may_control(ClientId client) const;
 
   /// Queues a change, applied before the next step; `cancel` runs instead if the scene stops
@@ -131,8 +133,8 @@ class SceneRunner {
   /// and tells the other clients.
   void change_body(ClientId by, BodyId body, std::function<void(World&)> change);
   /// `force` on each of `vertices` for `duration` simulated seconds (0: the next step).
-  void apply_force(ClientId by, BodyId body, std::vector<std::uint32_t> vertices,
-                   const Vec3& force, Real duration);
+  void apply_force(ClientId by, BodyId body, std::vector<std::uint32_t> vertices, const Vec3& force,
+                   Real duration);
 
   /// The latest published snapshot (never null).
   std::shared_ptr<const SceneSnapshot> latest() const { return latest_.load(); }
@@ -172,8 +174,8 @@ class SceneRunner {
   void publish_catalog();
   /// Makes the haptic frame for the snapshot just published, if proxies are in use.
   void publish_haptics(SteadyClock::time_point now);
-  /// Reports unrecoverable steps not yet reported, at most every kEventInterval.
-  void report_unrecoverable(bool force);
+  /// Reports rescued and unrecoverable steps not yet reported, at most twice a second.
+  void report_health(bool force);
   SceneStatus status() const;
   /// Queues `run`; its completion gets kCancelled if the scene stops first.
   template <class T>
@@ -204,9 +206,12 @@ class SceneRunner {
   bool paused_ = false;
   double time_scale_ = 1;
   bool resync_ = true;  ///< the wall clock origin must be set again (start, resume, scale)
-  std::uint64_t unreported_ = 0;  ///< unrecoverable steps not reported yet
-  std::vector<BodyId> failed_bodies_;
-  std::chrono::steady_clock::time_point last_event_{};
+  struct Unreported {
+    std::uint64_t steps = 0;
+    std::vector<BodyId> bodies;  ///< of the last such step (unrecoverable steps only)
+    std::chrono::steady_clock::time_point last_event{};
+  };
+  Unreported unrecoverable_, rescued_;
   std::uint64_t window_rescued_ = 0, window_unrecoverable_ = 0;
 
   TriangleQueryKind haptic_structure_;

@@ -155,20 +155,24 @@ TEST(SceneRunner, UnrecoverableStepsBecomeCoalescedEvents) {
   auto log = std::make_shared<EventLog>();
   runner.members().join({7, "test", log});
   runner.start();
-  ASSERT_TRUE(wait_for([&] { return log->events().size() >= 2; }));
+  const auto unrecoverable = [&] {
+    std::vector<SceneEvent> events = log->events();
+    std::erase_if(
+        events, [](const SceneEvent& e) { return e.kind != SceneEvent::Kind::kUnrecoverableStep; });
+    return events;
+  };
+  ASSERT_TRUE(wait_for([&] { return unrecoverable().size() >= 2; }));
   runner.stop();
-  const std::vector<SceneEvent> events = log->events();
+  const std::vector<SceneEvent> events = unrecoverable();
   EXPECT_EQ(events[0].kind, SceneEvent::Kind::kUnrecoverableStep);
-  EXPECT_EQ(events[0].sequence, 1u);
-  EXPECT_EQ(events[1].sequence, 2u);
+  EXPECT_LT(events[0].sequence, events[1].sequence);
   EXPECT_EQ(events[0].body_ids, std::vector<BodyId>{0});
   // every step fails, so the second event counts each step since the first: many steps in the
   // half second the runner waits between events, not one event per step
-  EXPECT_EQ(events[1].unrecoverable_steps, events[1].step - events[0].step);
-  EXPECT_GT(events[1].unrecoverable_steps, 1u);
+  EXPECT_EQ(events[1].count, events[1].step - events[0].step);
+  EXPECT_GT(events[1].count, 1u);
   // the events count every failed step they report, and no step twice
-  EXPECT_GE(runner.stats().unrecoverable_steps,
-            events[0].unrecoverable_steps + events[1].unrecoverable_steps);
+  EXPECT_GE(runner.stats().unrecoverable_steps, events[0].count + events[1].count);
 }
 
 }  // namespace

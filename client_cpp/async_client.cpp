@@ -1,0 +1,168 @@
+#include "async_client.hpp"
+
+#include <future>
+
+#include "wire/message_codec.hpp"
+
+namespace felt::client {
+
+namespace asio = boost::asio;
+namespace v1 = felt::v1;
+using asio::ip::tcp;
+
+namespace {
+
+constexpr std::size_t kMaxInboundFrameBytes = 256u << 20;
+
+}  // namespace
+
+AsyncClient::AsyncClient() : socket_(io_), decoder_(kMaxInboundFrameBytes) {}
+
+AsyncClient::~AsyncClient() {
+  close();
+}
+
+v1::Welcome AsyncClient::connect(const std::string& host, std::uint16_t port,
+                                 const std::string& client_name, const std::string& token,
+                                 std::chrono::milliseconds timeout) {
+  boost::system::error_code ec;
+  tcp::resolver resolver(io_);
+  const auto endpoints = resolver.resolve(host, std::to_string(port), ec);
+  if (!ec) asio::connect(socket_, endpoints, ec);
+  if (ec) {
+    throw ClientError(v1::ERROR_CODE_UNSPECIFIED, "cannot connect to " + host + ":" +
+                                                      std::to_string(port) + ": " + ec.message());
+  }
+  socket_.set_option(tcp::no_delay(true));
+  connected_ = true;
+  read();
+  thread_ = std::thread([this] { io_.run(); });
+  v1::ClientMessage message;
+  v1::Hello* hello = message.mutable_hello();
+  hello->set_protocol_version(1);
+  hello->set_client_name(client_name);
+  hello->set_token(token);
+  return request(std::move(message), timeout).welcome();
+}
+
+void AsyncClient::close() {
+  if (thread_.joinable()) {
+    asio::post(io_, [this] {
+      boost::system::error_code ignored;
+      socket_.shutdown(tcp::socket::shutdown_both, ignored);
+      socket_.close(ignored);
+    });
+    thread_.join();
+  }
+  connected_ = false;
+}
+
+std::uint64_t AsyncClient::send(v1::ClientMessage message, ReplyHandler on_reply) {
+  const std::uint64_t id = next_request_id_++;
+  message.set_request_id(id);
+  if (on_reply) {
+    std::lock_guard lock(handlers_mutex_);
+    handlers_.emplace(id, std::move(on_reply));
+  }
+  std::string bytes;
+  wire::append_message(bytes, message);
+  asio::post(io_, [this, bytes = std::move(bytes)]() mutable {
+    outbox_.push_back(std::move(bytes));
+    write_next();
+  });
+  return id;
+}
+
+void AsyncClient::send_proxy_update(std::uint32_t proxy_id, const Point& position,
+                                    std::uint32_t buttons) {
+  v1::ClientMessage message;
+  v1::ProxyUpdate* update = message.mutable_proxy_update();
+  update->set_proxy_id(proxy_id);
+  update->mutable_position()->set_x(position[0]);
+  update->mutable_position()->set_y(position[1]);
+  update->mutable_position()->set_z(position[2]);
+  update->set_buttons(buttons);
+  update->set_client_time_us(steady_microseconds());
+  send(std::move(message));
+}
+
+v1::ServerMessage AsyncClient::request(v1::ClientMessage message,
+                                       std::chrono::milliseconds timeout) {
+  auto promise = std::make_shared<std::promise<v1::ServerMessage>>();
+  auto reply = promise->get_future();
+  const std::uint64_t id =
+      send(std::move(message), [promise](const v1::ServerMessage& m) { promise->set_value(m); });
+  if (reply.wait_for(timeout) != std::future_status::ready) {
+    std::lock_guard lock(handlers_mutex_);
+    handlers_.erase(id);
+    throw ClientError(v1::ERROR_CODE_UNSPECIFIED, "no reply within the timeout");
+  }
+  v1::ServerMessage result = reply.get();
+  if (result.has_error()) throw ClientError(result.error().code(), result.error().message());
+  return result;
+}
+
+void AsyncClient::write_next() {
+  if (writing_ || outbox_.empty() || !socket_.is_open()) return;
+  writing_ = true;
+  asio::async_write(socket_, asio::buffer(outbox_.front()),
+                    [this](const boost::system::error_code& ec, std::size_t) {
+                      writing_ = false;
+                      outbox_.pop_front();
+                      if (ec) {
+                        connected_ = false;
+                        return;
+                      }
+                      write_next();
+                    });
+}
+
+void AsyncClient::read() {
+  socket_.async_read_some(asio::buffer(buffer_),
+                          [this](const boost::system::error_code& ec, std::size_t n) {
+                            if (ec) {
+                              connected_ = false;
+                              return;
+                            }
+                            decoder_.feed(std::span<const std::uint8_t>(buffer_.data(), n));
+                            while (true) {
+                              const wire::DecodeResult frame = decoder_.next();
+                              if (frame.status == wire::DecodeStatus::kNeedMore) break;
+                              v1::ServerMessage message;
+                              if (frame.status != wire::DecodeStatus::kFrame ||
+                                  !wire::parse_message(frame.payload, message)) {
+                                connected_ = false;
+                                return;
+                              }
+                              deliver(message);
+                            }
+                            read();
+                          });
+}
+
+void AsyncClient::deliver(v1::ServerMessage& message) {
+  if (message.has_frame()) {
+    if (on_frame_) on_frame_(message.frame());
+    return;
+  }
+  if (message.has_event()) {
+    if (on_event_) on_event_(message.event());
+    return;
+  }
+  ReplyHandler handler;
+  {
+    std::lock_guard lock(handlers_mutex_);
+    const auto it = handlers_.find(message.request_id());
+    if (it != handlers_.end()) {
+      handler = std::move(it->second);
+      handlers_.erase(it);
+    }
+  }
+  if (handler) {
+    handler(message);
+  } else if (message.has_force_update() && on_force_) {
+    on_force_(message.force_update(), steady_microseconds());
+  }
+}
+
+}  // namespace felt::client

@@ -1,0 +1,80 @@
+#pragma once
+// felt_client's asynchronous side, for loops that must not wait on the network (a 1 kHz haptic
+// loop): a thread of its own runs the connection; requests go out from any thread and their
+// replies, forces, frames and events come back through handlers on that thread.
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <unordered_map>
+
+#include <boost/asio.hpp>
+
+#include "felt/v1/envelope.pb.h"
+#include "felt_client.hpp"
+#include "wire/frame_codec.hpp"
+
+namespace felt::client {
+
+class AsyncClient {
+ public:
+  using ReplyHandler = std::function<void(const felt::v1::ServerMessage&)>;
+  /// A ForceUpdate and the client's steady clock (µs) when it was read.
+  using ForceHandler = std::function<void(const felt::v1::ForceUpdate&, std::uint64_t)>;
+  using FrameHandler = std::function<void(const felt::v1::Frame&)>;
+  using EventHandler = std::function<void(const felt::v1::SceneEvent&)>;
+
+  AsyncClient();
+  ~AsyncClient();
+  AsyncClient(const AsyncClient&) = delete;
+  AsyncClient& operator=(const AsyncClient&) = delete;
+
+  // Handlers are set before connect() and run on the client's thread; they must not block.
+  void on_force(ForceHandler handler) { on_force_ = std::move(handler); }
+  void on_frame(FrameHandler handler) { on_frame_ = std::move(handler); }
+  void on_event(EventHandler handler) { on_event_ = std::move(handler); }
+
+  /// Connects, starts the client's thread and says Hello; throws ClientError.
+  felt::v1::Welcome connect(const std::string& host, std::uint16_t port,
+                            const std::string& client_name, const std::string& token = "",
+                            std::chrono::milliseconds timeout = std::chrono::seconds(5));
+  void close();
+  /// False once the connection has ended.
+  bool connected() const { return connected_; }
+
+  /// Sends `message` under a fresh request id (returned); `on_reply` gets its reply or Error.
+  /// Safe from any thread; never waits.
+  std::uint64_t send(felt::v1::ClientMessage message, ReplyHandler on_reply = {});
+  /// Sends a ProxyUpdate stamped with the steady clock; the ForceUpdate goes to on_force.
+  void send_proxy_update(std::uint32_t proxy_id, const Point& position, std::uint32_t buttons = 0);
+  /// Sends `message` and waits for its reply (for a program's setup); an Error throws.
+  felt::v1::ServerMessage request(felt::v1::ClientMessage message,
+                                  std::chrono::milliseconds timeout = std::chrono::seconds(10));
+
+ private:
+  void read();
+  void write_next();
+  void deliver(felt::v1::ServerMessage& message);
+
+  boost::asio::io_context io_;
+  boost::asio::ip::tcp::socket socket_;
+  wire::FrameDecoder decoder_;
+  std::array<std::uint8_t, 64 * 1024> buffer_;
+  std::deque<std::string> outbox_;  ///< touched on the client's thread only
+  bool writing_ = false;
+  std::atomic<bool> connected_{false};
+  std::atomic<std::uint64_t> next_request_id_{1};
+  std::mutex handlers_mutex_;
+  std::unordered_map<std::uint64_t, ReplyHandler> handlers_;
+  ForceHandler on_force_;
+  FrameHandler on_frame_;
+  EventHandler on_event_;
+  std::thread thread_;
+};
+
+}  // namespace felt::client

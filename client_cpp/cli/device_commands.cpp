@@ -1,0 +1,326 @@
+// felt touch, grab, record and replay: a haptic device emulator that drives a proxy at haptic
+// rate along a scripted path (the server's own DevicePath, so scripts mean the same on both
+// sides) and logs what the server answers.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "cli/commands.hpp"
+#include "cli/progress.hpp"
+#include "core/device_path.hpp"
+#include "core/haptic_recording.hpp"
+
+namespace felt::cli {
+
+namespace v1 = felt::v1;
+using client::ClientError;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+Vec3 vec(const std::vector<double>& v) {
+  return Vec3(v[0], v[1], v[2]);
+}
+Vec3 vec(const v1::Vec3& v) {
+  return Vec3(v.x(), v.y(), v.z());
+}
+
+/// One update the emulator sent and what came back for it.
+struct Sample {
+  double time = 0;  ///< s, of the path
+  DeviceSample device;
+  std::uint64_t sent_us = 0;
+  std::optional<v1::ForceUpdate> reply;
+  double round_trip_us = 0;
+};
+
+/// Reads "time, x, y, z[, buttons]" lines (# comments allowed) into a sampled path.
+DevicePath read_csv_path(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "cannot read " + file);
+  DevicePath path;
+  path.shape = DevicePath::Shape::kSamples;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (line.empty() || line[0] == '#' || line.starts_with("time")) continue;
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream fields(line);
+    DeviceSample s;
+    if (!(fields >> s.time >> s.position.x() >> s.position.y() >> s.position.z())) {
+      throw ClientError(v1::ERROR_CODE_BAD_REQUEST, file + ":" + std::to_string(number) +
+                                                        ": expected time, x, y, z[, buttons]");
+    }
+    fields >> s.buttons;
+    if (!path.samples.empty() && s.time <= path.samples.back().time) {
+      throw ClientError(v1::ERROR_CODE_BAD_REQUEST,
+                        file + ":" + std::to_string(number) + ": times must increase");
+    }
+    path.samples.push_back(s);
+  }
+  if (path.samples.empty()) throw ClientError(v1::ERROR_CODE_BAD_REQUEST, file + ": no samples");
+  return path;
+}
+
+DevicePath make_path(const DeviceOptions& o) {
+  const auto need = [](const std::vector<double>& v, const char* flag) {
+    if (v.size() != 3)
+      throw ClientError(v1::ERROR_CODE_BAD_REQUEST, std::string(flag) + " X,Y,Z is needed");
+  };
+  DevicePath path;
+  path.period = o.period;
+  path.buttons = o.buttons;
+  if (o.path == "line" || o.path == "press") {
+    need(o.from, "--from");
+    need(o.to, "--to");
+    path.shape = o.path == "line" ? DevicePath::Shape::kLine : DevicePath::Shape::kPress;
+    path.a = vec(o.from);
+    path.b = vec(o.to);
+  } else if (o.path == "circle") {
+    need(o.center, "--center");
+    path.shape = DevicePath::Shape::kCircle;
+    path.a = vec(o.center);
+    path.axis = vec(o.axis);
+    path.radius = o.radius;
+    if (path.axis.norm() == 0)
+      throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "--axis must not be 0");
+  } else if (o.path == "csv") {
+    path = read_csv_path(o.csv);
+  } else {
+    throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "--path must be line, circle, press or csv");
+  }
+  if (!(o.period > 0)) throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "--period must be > 0");
+  return path;
+}
+
+double path_duration(const DeviceOptions& o, const DevicePath& path) {
+  if (o.duration > 0) return o.duration;
+  if (path.shape == DevicePath::Shape::kSamples) return path.samples.back().time;
+  return path.shape == DevicePath::Shape::kPress ? path.period + 1 : path.period;
+}
+
+/// Sends `path` at `times` (s after the start) as updates of proxy `proxy` and waits for the
+/// replies; each sample has its reply, if one came.
+std::vector<Sample> drive(const Common& common, const DevicePath& path,
+                          const std::vector<double>& times, std::uint32_t proxy,
+                          const char* label) {
+  std::mutex mutex;
+  std::vector<std::pair<v1::ForceUpdate, std::uint64_t>> replies;
+  client::AsyncClient client;
+  client.on_force([&](const v1::ForceUpdate& force, std::uint64_t received_us) {
+    std::lock_guard lock(mutex);
+    replies.emplace_back(force, received_us);
+  });
+  connect(client, common, "felt-device");
+  std::vector<Sample> samples(times.size());
+  Progress progress(label, times.empty() ? 0 : times.back());
+  const Clock::time_point start = Clock::now();
+  for (std::size_t k = 0; k < times.size() && client.connected(); ++k) {
+    std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
+                                              std::chrono::duration<double>(times[k])));
+    Sample& s = samples[k];
+    s.time = times[k];
+    s.device = path.at(times[k]);
+    s.sent_us = client::steady_microseconds();
+    // the stamp identifies the reply; two updates in the same microsecond would share one
+    if (k > 0 && s.sent_us <= samples[k - 1].sent_us) s.sent_us = samples[k - 1].sent_us + 1;
+    v1::ClientMessage message;
+    v1::ProxyUpdate& update = *message.mutable_proxy_update();
+    update.set_proxy_id(proxy);
+    update.mutable_position()->set_x(s.device.position.x());
+    update.mutable_position()->set_y(s.device.position.y());
+    update.mutable_position()->set_z(s.device.position.z());
+    update.set_buttons(s.device.buttons);
+    update.set_client_time_us(s.sent_us);
+    client.send(std::move(message));
+    progress.update(times[k]);
+  }
+  progress.finish();
+  const auto deadline = Clock::now() + std::chrono::seconds(2);
+  while (Clock::now() < deadline) {
+    {
+      std::lock_guard lock(mutex);
+      if (replies.size() >= times.size()) break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  client.close();
+  std::lock_guard lock(mutex);
+  // replies come back in order; match them to their updates by the echoed stamp
+  std::size_t k = 0;
+  for (const auto& [force, received_us] : replies) {
+    while (k < samples.size() && samples[k].sent_us < force.client_time_us()) ++k;
+    if (k == samples.size()) break;
+    if (samples[k].sent_us == force.client_time_us()) {
+      samples[k].reply = force;
+      samples[k].round_trip_us = static_cast<double>(received_us - samples[k].sent_us);
+    }
+  }
+  return samples;
+}
+
+std::vector<double> ticks(double duration, double rate) {
+  std::vector<double> times;
+  const auto count = static_cast<std::size_t>(std::floor(duration * rate)) + 1;
+  for (std::size_t k = 0; k < count; ++k) times.push_back(static_cast<double>(k) / rate);
+  return times;
+}
+
+double percentile(std::vector<double> values, double p) {
+  if (values.empty()) return 0;
+  std::sort(values.begin(), values.end());
+  const auto at = static_cast<std::size_t>(std::ceil(p * static_cast<double>(values.size()))) - 1;
+  return values[std::min(at, values.size() - 1)];
+}
+
+void write_log(const std::string& file, const std::vector<Sample>& samples) {
+  std::ofstream out(file);
+  out << "time,x,y,z,buttons,fx,fy,fz,in_contact,body,triangle,contact_x,contact_y,contact_z,"
+         "grabbing,round_trip_us\n";
+  out.precision(9);
+  for (const Sample& s : samples) {
+    if (!s.reply) continue;
+    const v1::ForceUpdate& r = *s.reply;
+    out << s.time << "," << s.device.position.x() << "," << s.device.position.y() << ","
+        << s.device.position.z() << "," << s.device.buttons << "," << r.force().x() << ","
+        << r.force().y() << "," << r.force().z() << "," << r.in_contact() << "," << r.body_id()
+        << "," << r.triangle() << "," << r.contact_point().x() << "," << r.contact_point().y()
+        << "," << r.contact_point().z() << "," << r.grabbing() << "," << s.round_trip_us << "\n";
+  }
+  if (!out) throw ClientError(v1::ERROR_CODE_UNSPECIFIED, "cannot write " + file);
+}
+
+void summarize(const std::vector<Sample>& samples) {
+  std::vector<double> round_trips;
+  std::size_t contact = 0, grabbing = 0;
+  double max_force = 0;
+  for (const Sample& s : samples) {
+    if (!s.reply) continue;
+    round_trips.push_back(s.round_trip_us);
+    contact += s.reply->in_contact() ? 1 : 0;
+    grabbing += s.reply->grabbing() ? 1 : 0;
+    max_force = std::max(max_force, vec(s.reply->force()).norm());
+  }
+  std::printf("%zu updates sent, %zu answered, %zu in contact, %zu grabbing, max |F| %.4g N\n",
+              samples.size(), round_trips.size(), contact, grabbing, max_force);
+  std::printf("round trip: p50 %.0f us, p99 %.0f us, max %.0f us\n", percentile(round_trips, 0.5),
+              percentile(round_trips, 0.99), percentile(round_trips, 1.0));
+  for (auto it = samples.rbegin(); it != samples.rend(); ++it) {
+    if (!it->reply) continue;
+    const v1::ForceUpdate& r = *it->reply;
+    std::printf("last: force %.6g %.6g %.6g N, %s", r.force().x(), r.force().y(), r.force().z(),
+                r.in_contact() ? "in contact" : "free");
+    if (r.in_contact()) std::printf(" with body %u, triangle %d", r.body_id(), r.triangle());
+    if (r.grabbing()) std::printf(", holding vertex %u", r.grabbed_vertex());
+    std::printf("\n");
+    break;
+  }
+}
+
+int single_touch(const Common& common, const DeviceOptions& o) {
+  client::Client client;
+  connect(client, common);
+  const v1::ForceUpdate force =
+      client.proxy_update(o.proxy, {o.at[0], o.at[1], o.at[2]}, o.buttons);
+  std::printf("force %.6g %.6g %.6g N  |F| %.6g N\n", force.force().x(), force.force().y(),
+              force.force().z(), vec(force.force()).norm());
+  if (force.in_contact()) {
+    std::printf("contact at %.6g %.6g %.6g on body %u, triangle %d\n", force.contact_point().x(),
+                force.contact_point().y(), force.contact_point().z(), force.body_id(),
+                force.triangle());
+  } else {
+    std::printf("no contact\n");
+  }
+  return 0;
+}
+
+}  // namespace
+
+int touch(const Common& common, const DeviceOptions& o) {
+  if (!o.at.empty()) return single_touch(common, o);
+  if (!(o.rate >= 1 && o.rate <= 10'000)) {
+    throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "--rate must be 1 to 10000 Hz");
+  }
+  const DevicePath path = make_path(o);
+  const auto samples = drive(common, path, ticks(path_duration(o, path), o.rate), o.proxy, "touch");
+  if (!o.log.empty()) write_log(o.log, samples);
+  summarize(samples);
+  return 0;
+}
+
+int grab(const Common& common, DeviceOptions o) {
+  // press into the surface from --from to --to holding the grab button, then hold
+  if (o.path.empty()) o.path = "press";
+  o.buttons |= 1u;
+  return touch(common, o);
+}
+
+int record(const Common& common, const DeviceOptions& o, const std::string& out_file) {
+  const DevicePath path = make_path(o);
+  const auto samples =
+      drive(common, path, ticks(path_duration(o, path), o.rate), o.proxy, "record");
+  std::ofstream out(out_file);
+  write_recording_header(out);
+  std::size_t written = 0;
+  for (const Sample& s : samples) {
+    if (!s.reply) continue;
+    HapticRecord r;
+    r.time = s.time;
+    r.position = s.device.position;
+    r.buttons = s.device.buttons;
+    r.in_contact = s.reply->in_contact();
+    r.body = s.reply->body_id();
+    r.triangle = s.reply->triangle();
+    r.proxy = vec(s.reply->proxy());
+    r.force = vec(s.reply->force());
+    write_record(out, r);
+    ++written;
+  }
+  if (!out) throw ClientError(v1::ERROR_CODE_UNSPECIFIED, "cannot write " + out_file);
+  std::printf("%zu updates recorded to %s\n", written, out_file.c_str());
+  summarize(samples);
+  return 0;
+}
+
+int replay(const Common& common, const std::string& file, double tolerance) {
+  std::ifstream in(file);
+  auto records = in ? read_recording(in) : std::unexpected(std::string("cannot open the file"));
+  if (!records) throw ClientError(v1::ERROR_CODE_BAD_REQUEST, file + ": " + records.error());
+  if (records->empty()) throw ClientError(v1::ERROR_CODE_BAD_REQUEST, file + ": no records");
+  DevicePath path;
+  path.shape = DevicePath::Shape::kSamples;
+  std::vector<double> times;
+  std::vector<std::size_t> record_of;  // a recording of several devices: the first one's
+  for (std::size_t k = 0; k < records->size(); ++k) {
+    const HapticRecord& r = (*records)[k];
+    if (r.device != (*records)[0].device) continue;
+    path.samples.push_back({r.time, r.position, r.buttons});
+    times.push_back(r.time);
+    record_of.push_back(k);
+  }
+  const auto samples = drive(common, path, times, 0, "replay");
+  std::size_t compared = 0, equivalent = 0;
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    if (!samples[k].reply) continue;
+    const HapticRecord& recorded = (*records)[record_of[k]];
+    HapticRecord replayed = recorded;
+    replayed.in_contact = samples[k].reply->in_contact();
+    replayed.body = samples[k].reply->body_id();
+    replayed.triangle = samples[k].reply->triangle();
+    replayed.proxy = vec(samples[k].reply->proxy());
+    ++compared;
+    equivalent += collision_equivalent(recorded, replayed, tolerance) ? 1 : 0;
+  }
+  std::printf("replay: %zu of %zu updates collision-equivalent to the recording (tolerance %g m)\n",
+              equivalent, compared, tolerance);
+  summarize(samples);
+  return 0;
+}
+
+}  // namespace felt::cli
