@@ -74,7 +74,10 @@ bool read_values(std::string_view bytes, std::size_t count, std::vector<std::uin
 void append_deltas(std::span<const std::uint16_t> q, std::span<const std::uint16_t> base,
                    std::string& bytes) {
   for (std::size_t i = 0; i < q.size(); ++i) {
-    const std::int32_t d = std::int32_t{q[i]} - std::int32_t{base[i]};
+    // neighbouring vertices (in index order) move alike: send the change of this coordinate
+    // less the change of the previous vertex's same coordinate
+    const std::int32_t d = std::int32_t{q[i]} - std::int32_t{base[i]} -
+                           (i >= 3 ? std::int32_t{q[i - 3]} - std::int32_t{base[i - 3]} : 0);
     // zigzag: small magnitudes of either sign become small unsigned numbers
     std::uint32_t z = (static_cast<std::uint32_t>(d) << 1) ^ static_cast<std::uint32_t>(d >> 31);
     while (z >= 0x80) {
@@ -91,7 +94,7 @@ bool read_deltas(std::string_view bytes, std::span<const std::uint16_t> base,
   std::size_t at = 0;
   for (std::size_t i = 0; i < base.size(); ++i) {
     std::uint32_t z = 0;
-    // a delta of 16-bit values needs at most 17 bits: three varint bytes
+    // a difference of two 16-bit changes needs at most 18 bits: three varint bytes
     for (int shift = 0;; shift += 7) {
       if (at == bytes.size() || shift > 14) return false;
       const auto byte = static_cast<unsigned char>(bytes[at++]);
@@ -99,7 +102,8 @@ bool read_deltas(std::string_view bytes, std::span<const std::uint16_t> base,
       if ((byte & 0x80) == 0) break;
     }
     const std::int32_t d = static_cast<std::int32_t>(z >> 1) ^ -static_cast<std::int32_t>(z & 1);
-    const std::int32_t v = std::int32_t{base[i]} + d;
+    const std::int32_t previous = i >= 3 ? std::int32_t{q[i - 3]} - std::int32_t{base[i - 3]} : 0;
+    const std::int32_t v = std::int32_t{base[i]} + previous + d;
     if (v < 0 || v > static_cast<std::int32_t>(kQuantizedMax)) return false;
     q[i] = static_cast<std::uint16_t>(v);
   }

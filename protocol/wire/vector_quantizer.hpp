@@ -37,7 +37,9 @@ void append_values(std::span<const std::uint16_t> q, std::string& bytes);
 /// False when the byte count is not `count` values.
 bool read_values(std::string_view bytes, std::size_t count, std::vector<std::uint16_t>& q);
 
-/// Delta bytes: per value, the zigzag varint of q − base (same length as base).
+/// Delta bytes: per value i, the zigzag varint of (q[i] − base[i]) − (q[i−3] − base[i−3]) (the
+/// previous vertex's change of the same coordinate; 0 for the first vertex), so that a body
+/// whose neighbouring vertices move alike costs about a byte a coordinate.
 void append_deltas(std::span<const std::uint16_t> q, std::span<const std::uint16_t> base,
                    std::string& bytes);
 /// False when the bytes are not exactly base.size() varints, or a value leaves 0 ... 65535.

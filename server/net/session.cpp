@@ -77,10 +77,7 @@ Session::~Session() {
 void Session::start() {
   counted_ = true;
   ++context_.clients;
-  asio::dispatch(socket_.get_executor(), [self = shared_from_this()] {
-    if (self->context_.default_scene != 0) self->join(self->context_.default_scene);
-    self->read();
-  });
+  asio::dispatch(socket_.get_executor(), [self = shared_from_this()] { self->read(); });
 }
 
 void Session::reject(v1::ErrorCode code, const std::string& message) {
@@ -200,14 +197,27 @@ void Session::send_error(std::uint64_t request_id, v1::ErrorCode code, const std
   send(reply);
 }
 
+void Session::close_after_replies() {
+  closing_ = true;
+  frame_pending_ = false;
+  write_next();
+}
+
 std::shared_ptr<PendingReply> Session::defer(std::uint64_t request_id) {
   if (in_flight_.load() >= context_.options.max_requests_in_flight) return nullptr;
   return std::make_shared<PendingReply>(shared_from_this(), request_id);
 }
 
 void Session::set_greeted(std::string client_name) {
+  const bool first = !greeted_;
   greeted_ = true;
   client_name_ = std::move(client_name);
+  // a client is in the server's default scene from its first Hello: before it, it hears nothing
+  if (first && !scene_ && context_.default_scene != 0) join(context_.default_scene);
+}
+
+bool Session::refuse_hello() {
+  return ++refused_hellos_ >= kMaxRefusedHellos;
 }
 
 void Session::write_next() {

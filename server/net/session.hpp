@@ -68,12 +68,19 @@ class Session : public std::enable_shared_from_this<Session> {
   /// pile up is disconnected.
   void send(const felt::v1::ServerMessage& message);
   void send_error(std::uint64_t request_id, felt::v1::ErrorCode code, const std::string& message);
+  /// Reads no more requests; closes once the queued replies are written.
+  void close_after_replies();
   /// A reply that another thread will send; null when the client already has as many requests
   /// in flight as it may (the caller answers LIMIT_EXCEEDED).
   std::shared_ptr<PendingReply> defer(std::uint64_t request_id);
 
   bool greeted() const { return greeted_; }
+  /// The first successful Hello also joins the server's default scene.
   void set_greeted(std::string client_name);
+  /// Counts a Hello with a wrong token; true when the connection must close (no endless
+  /// guessing on one connection).
+  bool refuse_hello();
+  static constexpr int kMaxRefusedHellos = 3;
 
   /// The scene this session is in (nullptr when none).
   const std::shared_ptr<SceneRunner>& scene() const { return scene_; }
@@ -145,6 +152,7 @@ class Session : public std::enable_shared_from_this<Session> {
   bool counted_ = false;  ///< counted in context_.clients
 
   bool greeted_ = false;
+  int refused_hellos_ = 0;
   std::string client_name_;
   SceneId scene_id_ = 0;
   std::shared_ptr<SceneRunner> scene_;

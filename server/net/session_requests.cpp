@@ -45,7 +45,11 @@ void handle_hello(Session& session, std::uint64_t id, const v1::Hello& hello) {
     return;
   }
   if (!context.options.token.empty() && !tokens_equal(context.options.token, hello.token())) {
-    session.send_error(id, v1::ERROR_CODE_UNAUTHORIZED, "wrong or missing token");
+    const bool last = session.refuse_hello();
+    session.send_error(
+        id, v1::ERROR_CODE_UNAUTHORIZED,
+        last ? "wrong or missing token; the connection closes" : "wrong or missing token");
+    if (last) session.close_after_replies();
     return;
   }
   session.set_greeted(hello.client_name().substr(0, kMaxClientName));

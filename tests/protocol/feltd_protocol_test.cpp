@@ -7,50 +7,12 @@
 
 #include <gtest/gtest.h>
 
-#include "felt_client.hpp"
-#include "feltd_process.hpp"
+#include "feltd_fixture.hpp"
 #include "wire/frame_codec.hpp"
 #include "wire/message_codec.hpp"
 
 namespace felt::test {
 namespace {
-
-namespace v1 = felt::v1;
-using client::Client;
-using client::ClientError;
-using namespace std::chrono_literals;
-
-std::vector<std::string> default_args() {
-  return {"--scene-dir", FELT_SCENE_DIR, "--scene", std::string(FELT_SCENE_DIR) + "/default.json"};
-}
-
-class FeltdTest : public ::testing::Test {
- protected:
-  void SetUp() override { server_ = std::make_unique<FeltdProcess>(default_args()); }
-  void TearDown() override {
-    if (server_ && server_->running()) {
-      EXPECT_EQ(server_->stop(SIGTERM, 5s), 0);
-    }
-  }
-  void connect(Client& client) { client.connect("127.0.0.1", server_->port()); }
-
-  std::unique_ptr<FeltdProcess> server_;
-};
-
-/// Runs `call` and expects it to throw the server's error `code`.
-template <typename Call>
-void expect_error(Call call, v1::ErrorCode code) {
-  try {
-    call();
-    ADD_FAILURE() << "no error (expected code " << code << ")";
-  } catch (const ClientError& e) {
-    EXPECT_EQ(e.code(), code) << e.what();
-  }
-}
-
-std::array<double, 3> vertex(const v1::BodyFrame& body, int v) {
-  return {body.positions(3 * v), body.positions(3 * v + 1), body.positions(3 * v + 2)};
-}
 
 TEST_F(FeltdTest, HelloReportsVersionCapabilitiesAndTheDefaultScene) {
   Client client;
@@ -398,6 +360,16 @@ TEST(Feltd, TokenIsRequiredWhenConfigured) {
     }
     EXPECT_THROW(client.subscribe_frames(), ClientError);  // still not greeted
     EXPECT_EQ(client.hello("friend", "sesame").protocol_version(), 1u);
+  }
+  {
+    // no endless guessing: the third wrong token closes the connection
+    Client guesser;
+    guesser.connect("127.0.0.1", server.port());
+    for (const char* guess : {"a", "b"}) {
+      expect_error([&] { guesser.hello("guesser", guess); }, v1::ERROR_CODE_UNAUTHORIZED);
+    }
+    expect_error([&] { guesser.hello("guesser", "c"); }, v1::ERROR_CODE_UNAUTHORIZED);
+    EXPECT_THROW(guesser.hello("guesser", "sesame"), ClientError);  // closed
   }
   EXPECT_EQ(server.stop(SIGINT, 5s), 0);
 }

@@ -3,9 +3,12 @@
 // member that records the events it hears.
 
 #include <chrono>
+#include <future>
 #include <mutex>
 #include <thread>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/cloth_grid.hpp"
 #include "runtime/scene_runner.hpp"
@@ -64,5 +67,37 @@ class EventLog : public SceneListener {
   mutable std::mutex mutex_;
   std::vector<SceneEvent> events_;
 };
+
+/// A request's outcome, awaited: hand completion() to the runner, then get() it.
+template <class T>
+class Awaited {
+ public:
+  Completion<T> completion() {
+    return [promise = promise_](std::expected<T, RunnerError> result) {
+      promise->set_value(std::move(result));
+    };
+  }
+  /// The outcome; a timeout fails the test and returns a kCancelled error.
+  std::expected<T, RunnerError> get(std::chrono::milliseconds timeout = 5s) {
+    auto future = promise_->get_future();
+    if (future.wait_for(timeout) != std::future_status::ready) {
+      ADD_FAILURE() << "no completion within the timeout";
+      return std::unexpected(RunnerError{RunnerError::Code::kCancelled, "timeout"});
+    }
+    return future.get();
+  }
+
+ private:
+  std::shared_ptr<std::promise<std::expected<T, RunnerError>>> promise_ =
+      std::make_shared<std::promise<std::expected<T, RunnerError>>>();
+};
+
+/// Runs a request and waits for its outcome.
+template <class T, class Request>
+std::expected<T, RunnerError> await(Request request) {
+  Awaited<T> awaited;
+  request(awaited.completion());
+  return awaited.get();
+}
 
 }  // namespace felt

@@ -1,0 +1,187 @@
+// The server's frame stream against the client's assembler: what one encodes the other decodes,
+// in every encoding, with the triangles sent once, deltas only against acknowledged frames, and
+// 16-bit deltas well under float32's size on a moving cloth.
+
+#include "net/frame_stream.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/cloth_grid.hpp"
+#include "frame_assembler.hpp"
+
+namespace felt::net {
+namespace {
+
+/// A hanging 30 x 30 cloth falling from its top corners, one body (or two, the second still).
+World swinging_world(bool second_body = false) {
+  World world(WorldSettings{Vec3(0, -9.81, 0), 1e-3, 100, 6});
+  for (int b = 0; b < (second_body ? 2 : 1); ++b) {
+    GridClothSpec spec;
+    spec.nx = spec.ny = 30;
+    spec.center = Vec3(2.0 * b, 1.5, 0);
+    ClothParams params;
+    params.spring(SpringKind::kStructural) = {true, 200, 0.05};
+    params.spring(SpringKind::kShear) = {true, 50, 0.02};
+    params.spring(SpringKind::kBend) = {true, 5, 0.005};
+    ClothBody cloth("c" + std::to_string(b),
+                    std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
+                    make_integrator("symplectic_euler"));
+    for (std::uint32_t p : grid_pin_indices(spec, GridPinPreset::kTopCorners)) cloth.pin(p);
+    world.add_body(std::move(cloth));
+  }
+  return world;
+}
+
+/// The stream's next frame from `world`, as the client decodes it.
+struct Sent {
+  v1::Frame frame;
+  client::DecodedFrame decoded;
+};
+
+Sent send(FrameStream& stream, const World& world, client::FrameAssembler& assembler,
+          bool written = true) {
+  Sent sent;
+  stream.build(*make_snapshot(world), 7, 0, sent.frame);
+  if (written) stream.written();
+  auto decoded = assembler.assemble(sent.frame);
+  EXPECT_TRUE(decoded) << decoded.error();
+  if (decoded) sent.decoded = std::move(*decoded);
+  return sent;
+}
+
+/// The largest coordinate error of body `b` of `decoded` against the world's positions rounded
+/// to float (what a float32 frame carries).
+double max_error(const client::DecodedFrame& decoded, std::size_t b, const World& world) {
+  const std::vector<Vec3>& x = world.cloths()[b].state().x;
+  EXPECT_EQ(decoded.bodies[b].positions.size(), 3 * x.size());
+  double worst = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const double sent = static_cast<float>(x[i][k]);
+      worst = std::max(worst, std::abs(decoded.bodies[b].positions[3 * i + k] - sent));
+    }
+  }
+  return worst;
+}
+
+/// Half a quantization step of body `b`'s bounds in `frame`, the error 16 bits may make,
+/// plus float rounding of the dequantized value.
+double half_step(const v1::Frame& frame, int b) {
+  const v1::QuantizedVectors& q = frame.bodies(b).quantized_positions();
+  double widest = 0;
+  for (int k = 0; k < 3; ++k) widest = std::max<double>(widest, q.upper(k) - q.lower(k));
+  return 0.5 * widest / 65535 + 1e-6;
+}
+
+TEST(FrameStream, Float32FramesCarryExactFloatsAndTrianglesOnce) {
+  World world = swinging_world();
+  FrameStream stream;
+  stream.start({60, true, {}, false, false});
+  client::FrameAssembler assembler;
+  const Sent first = send(stream, world, assembler);
+  EXPECT_EQ(first.frame.sequence(), 1u);
+  EXPECT_EQ(first.frame.bodies(0).triangles_size(), 3 * 29 * 29 * 2);
+  EXPECT_EQ(max_error(first.decoded, 0, world), 0.0);  // exactly the floats that were sent
+  EXPECT_EQ(first.decoded.bodies[0].normals.size(), 3u * 900);
+  world.step();
+  const Sent second = send(stream, world, assembler);
+  EXPECT_EQ(second.frame.bodies(0).triangles_size(), 0);
+  ASSERT_NE(second.decoded.bodies[0].triangles, nullptr);  // the client kept them
+  EXPECT_EQ(second.decoded.bodies[0].triangles->size(), 3u * 29 * 29 * 2);
+}
+
+TEST(FrameStream, QuantizedFramesAreWithinHalfAStepAndHalfTheSize) {
+  World world = swinging_world();
+  FrameStream floats, quantized;
+  floats.start({60, false, {}, false, false});
+  quantized.start({60, false, {}, true, false});
+  client::FrameAssembler a, b;
+  send(floats, world, a);
+  send(quantized, world, b);  // the first frames carry the triangles
+  for (int i = 0; i < 200; ++i) world.step();
+  const Sent f = send(floats, world, a);
+  const Sent q = send(quantized, world, b);
+  EXPECT_LT(max_error(q.decoded, 0, world), half_step(q.frame, 0));
+  EXPECT_LT(half_step(q.frame, 0), 2e-5);  // a 1 m cloth: bounds of about 1.5 m
+  EXPECT_LT(q.frame.ByteSizeLong(), 0.55 * f.frame.ByteSizeLong());
+}
+
+TEST(FrameStream, DeltasOfAMovingClothAreUnderFortyPercentOfFloat32) {
+  World world = swinging_world();
+  FrameStream floats, deltas;
+  floats.start({60, true, {}, false, false});
+  deltas.start({60, true, {}, true, true});
+  client::FrameAssembler a, b;
+  send(floats, world, a);
+  const Sent key = send(deltas, world, b);
+  ASSERT_TRUE(deltas.acknowledge(key.frame.sequence()));
+  std::size_t float_bytes = 0, delta_bytes = 0, delta_frames = 0;
+  for (int frame = 0; frame < 60; ++frame) {
+    for (int s = 0; s < 16; ++s) world.step();  // 60 Hz frames of a 1 kHz scene
+    float_bytes += send(floats, world, a).frame.ByteSizeLong();
+    const Sent d = send(deltas, world, b);
+    delta_bytes += d.frame.ByteSizeLong();
+    delta_frames += d.frame.base_sequence() != 0 ? 1 : 0;
+    EXPECT_LT(max_error(d.decoded, 0, world), half_step(d.frame, 0)) << frame;
+    ASSERT_TRUE(deltas.acknowledge(d.frame.sequence()));  // the client takes every frame
+  }
+  EXPECT_GT(delta_frames, 50u);
+  // with normals in both (a viewer's usual subscription)
+  EXPECT_LT(delta_bytes, 0.4 * float_bytes) << delta_bytes << " vs " << float_bytes;
+}
+
+TEST(FrameStream, DeltasUseOnlyAcknowledgedFramesAndABodyLeavingItsBoundsGetsAKeyFrame) {
+  World world = swinging_world();
+  FrameStream stream;
+  stream.start({60, false, {}, true, true});
+  client::FrameAssembler assembler;
+  const Sent key = send(stream, world, assembler);
+  world.step();
+  const Sent unacknowledged = send(stream, world, assembler);
+  EXPECT_EQ(unacknowledged.frame.base_sequence(), 0u);  // nothing acknowledged yet
+  EXPECT_FALSE(stream.acknowledge(99));                 // never sent
+  ASSERT_TRUE(stream.acknowledge(key.frame.sequence()));
+  world.step();
+  const Sent delta = send(stream, world, assembler);
+  EXPECT_EQ(delta.frame.base_sequence(), key.frame.sequence());
+  EXPECT_FALSE(delta.frame.bodies(0).quantized_positions().deltas().empty());
+  // the cloth moved far: outside the base's bounds, so its values come whole
+  for (Vec3& x : world.cloths()[0].state().x) x += Vec3(5, 0, 0);
+  const Sent moved = send(stream, world, assembler);
+  EXPECT_FALSE(moved.frame.bodies(0).quantized_positions().values().empty());
+  EXPECT_LT(max_error(moved.decoded, 0, world), half_step(moved.frame, 0));
+  // a client that lost the base frame cannot decode, and says why
+  client::FrameAssembler forgetful;
+  const auto lost = forgetful.assemble(delta.frame);
+  ASSERT_FALSE(lost);
+  EXPECT_NE(lost.error().find("not kept"), std::string::npos);
+}
+
+TEST(FrameStream, ADroppedFrameGivesItsTrianglesToTheNext) {
+  World world = swinging_world();
+  FrameStream stream;
+  stream.start({60, false, {}, false, false});
+  v1::Frame dropped;
+  stream.build(*make_snapshot(world), 7, 0, dropped);
+  EXPECT_GT(dropped.bodies(0).triangles_size(), 0);
+  stream.dropped();
+  world.step();
+  v1::Frame next;
+  stream.build(*make_snapshot(world), 7, 1, next);
+  EXPECT_EQ(next.bodies(0).triangles_size(), dropped.bodies(0).triangles_size());
+  EXPECT_EQ(next.skipped(), 1u);
+}
+
+TEST(FrameStream, ASubscriptionSeesOnlyItsBodies) {
+  World world = swinging_world(true);
+  FrameStream stream;
+  stream.start({60, false, {1}, false, false});
+  v1::Frame frame;
+  stream.build(*make_snapshot(world), 7, 0, frame);
+  ASSERT_EQ(frame.bodies_size(), 1);
+  EXPECT_EQ(frame.bodies(0).body_id(), 1u);
+  EXPECT_EQ(frame.bodies(0).name(), "c1");
+}
+
+}  // namespace
+}  // namespace felt::net

@@ -1,0 +1,210 @@
+// End to end: bodies added and removed at run time, pushed, pinned; per-proxy settings; frame
+// encodings and subscriptions.
+
+#include <cmath>
+#include <thread>
+
+#include "feltd_fixture.hpp"
+#include "frame_assembler.hpp"
+
+namespace felt::test {
+namespace {
+
+/// The next frame whose step is at least `step` (frames the client buffered before it are
+/// skipped).
+std::optional<v1::Frame> frame_from(Client& client, std::uint64_t step) {
+  for (int i = 0; i < 200; ++i) {
+    auto frame = client.next_frame(5s);
+    if (!frame || frame->step() >= step) return frame;
+  }
+  return std::nullopt;
+}
+
+TEST_F(FeltdTest, ClothsSolidsAndCollidersComeAndGo) {
+  auto client = greeted("builder");
+  client->create_scene({});
+  const v1::BodyInfo cloth = client->add_body(small_cloth_json(0)).body();
+  EXPECT_EQ(cloth.kind(), "cloth");
+  EXPECT_EQ(cloth.particles(), 36u);
+  EXPECT_EQ(cloth.triangles(), 50u);
+  const v1::BodyInfo solid = client
+                                 ->add_body(R"({"type": "solid", "lattice": {"cells": [2, 2, 2],
+      "size": [0.2, 0.2, 0.2]}, "transform": {"translate": [1, 0.5, 0]}})")
+                                 .body();
+  EXPECT_EQ(solid.kind(), "solid");
+  EXPECT_EQ(solid.nodes(), 27u);
+  const v1::BodyInfo floor =
+      client->add_collider(R"({"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]})").body();
+  EXPECT_EQ(floor.kind(), "collider");
+  client->subscribe_frames(60);
+  auto frame = client->next_frame(5s);
+  ASSERT_TRUE(frame);
+  EXPECT_EQ(frame->bodies_size(), 2);  // colliders have nothing to stream
+  // the solid falls onto the floor and rests on it instead of falling through
+  std::this_thread::sleep_for(1500ms);
+  frame = frame_from(*client, client->stats().scene().steps());
+  ASSERT_TRUE(frame);
+  double lowest = 1e9;
+  const auto& y = frame->bodies(1).positions();
+  for (int i = 1; i < y.size(); i += 3) lowest = std::min<double>(lowest, y[i]);
+  EXPECT_GT(lowest, -0.02);
+  EXPECT_LT(lowest, 0.1);
+  EXPECT_EQ(client->remove_body(floor.body_id()).body_id(), floor.body_id());
+  expect_error([&] { client->remove_body(floor.body_id()); }, v1::ERROR_CODE_UNKNOWN_ID);
+  client->remove_body(cloth.body_id());
+  frame = frame_from(*client, client->stats().scene().steps() + 1);
+  ASSERT_TRUE(frame);
+  ASSERT_EQ(frame->bodies_size(), 1);
+  EXPECT_EQ(frame->bodies(0).body_id(), solid.body_id());
+}
+
+TEST_F(FeltdTest, BadBodiesAreRefusedWithTheirJsonPath) {
+  auto client = greeted("careless");
+  try {
+    client->add_body(R"({"type": "cloth", "grid": {"nx": 1}})");
+    ADD_FAILURE() << "a 1-particle-wide grid was accepted";
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), v1::ERROR_CODE_BAD_SCENE);
+    EXPECT_NE(std::string(e.what()).find("body.grid.nx"), std::string::npos) << e.what();
+  }
+  expect_error([&] { client->add_body("{not json"); }, v1::ERROR_CODE_BAD_SCENE);
+  expect_error([&] { client->add_body(R"({"type": "jelly"})"); }, v1::ERROR_CODE_BAD_SCENE);
+  expect_error([&] { client->add_collider(R"({"type": "sphere", "radius": -1})"); },
+               v1::ERROR_CODE_BAD_SCENE);
+  expect_error(
+      [&] { client->add_body(R"({"type": "cloth", "mesh": {"file": "../../etc/passwd"}})"); },
+      v1::ERROR_CODE_BAD_SCENE);
+  v1::ClientMessage empty_add;
+  empty_add.mutable_add_body();
+  expect_error([&] { client->request(empty_add); }, v1::ERROR_CODE_BAD_REQUEST);
+  // more particles than a client's scene may have
+  expect_error([&] { client->add_body(R"({"type": "cloth", "grid": {"nx": 600, "ny": 600}})"); },
+               v1::ERROR_CODE_BAD_SCENE);
+  EXPECT_EQ(client->stats().scene().bodies(), 1u);  // nothing was added
+}
+
+TEST_F(FeltdTest, AForcePushesTheClothForItsDuration) {
+  auto client = greeted("pusher");
+  client->load_scene_by_name("default");
+  client->pause();
+  client->subscribe_frames(0);
+  const auto before = frame_from(*client, 0);
+  ASSERT_TRUE(before);
+  // the curtain's bottom edge, pushed along +z for 0.2 s
+  std::vector<std::uint32_t> bottom;
+  for (std::uint32_t v = 0; v < 20; ++v) bottom.push_back(v);
+  client->apply_force(0, bottom, {0, 0, 0.05}, 0.2);
+  const v1::SceneStatus after = client->step(200);
+  const auto pushed = frame_from(*client, after.step());
+  ASSERT_TRUE(pushed);
+  EXPECT_GT(vertex(pushed->bodies(0), 10)[2], vertex(before->bodies(0), 10)[2] + 0.01);
+  expect_error([&] { client->apply_force(0, {400}, {0, 0, 1}, 0); }, v1::ERROR_CODE_BAD_REQUEST);
+  expect_error([&] { client->apply_force(0, {}, {0, 0, 1}, 0); }, v1::ERROR_CODE_BAD_REQUEST);
+  expect_error([&] { client->apply_force(0, {1}, {0, NAN, 1}, 0); }, v1::ERROR_CODE_BAD_REQUEST);
+  expect_error([&] { client->apply_force(0, {1}, {0, 1e30, 1}, 0); }, v1::ERROR_CODE_BAD_REQUEST);
+  expect_error([&] { client->apply_force(0, {1}, {0, 0, 1}, -1); }, v1::ERROR_CODE_BAD_REQUEST);
+  expect_error([&] { client->apply_force(9, {1}, {0, 0, 1}, 0); }, v1::ERROR_CODE_UNKNOWN_ID);
+}
+
+TEST_F(FeltdTest, AProxyOpensWithItsOwnSettings) {
+  auto client = greeted("toucher");
+  client->load_scene_by_name("default");
+  client->pause();  // a still curtain: the force is exactly k times the depth
+  v1::ProxySettings settings;
+  settings.set_stiffness(1000);
+  settings.set_max_force(50);
+  settings.set_radius(0.03);
+  const v1::ProxyOpened opened = client->open_proxy(settings);
+  EXPECT_NE(opened.proxy_id(), 0u);
+  EXPECT_DOUBLE_EQ(opened.settings().stiffness(), 1000);
+  EXPECT_DOUBLE_EQ(opened.settings().damping(), 0);  // the scene's, as it was not given
+  // the curtain hangs in z = 0: a sphere of 3 cm whose device is 1 cm in front is 2 cm deep
+  const v1::ForceUpdate force = client->proxy_update(opened.proxy_id(), {0, 1.2, 0.01});
+  ASSERT_TRUE(force.in_contact());
+  EXPECT_NEAR(force.force().z(), 1000 * 0.02, 0.05);
+  // the scene's default proxy is softer: 400 N/m and 2 cm
+  EXPECT_NEAR(client->proxy_update(0, {0.3, 1.2, 0.01}).force().z(), 400 * 0.01, 0.02);
+  EXPECT_EQ(client->close_proxy(opened.proxy_id()).proxy_id(), opened.proxy_id());
+  expect_error([&] { client->close_proxy(opened.proxy_id()); }, v1::ERROR_CODE_UNKNOWN_ID);
+  for (auto bad : {&v1::ProxySettings::set_radius, &v1::ProxySettings::set_stiffness,
+                   &v1::ProxySettings::set_max_force, &v1::ProxySettings::set_damping}) {
+    for (double value : {-1.0, std::nan(""), 1e12}) {
+      v1::ProxySettings wrong;
+      (wrong.*bad)(value);
+      expect_error([&] { client->open_proxy(wrong); }, v1::ERROR_CODE_BAD_REQUEST);
+    }
+  }
+  v1::ProxySettings slippery;
+  slippery.set_static_friction(0.1);
+  slippery.set_dynamic_friction(0.5);
+  expect_error([&] { client->open_proxy(slippery); }, v1::ERROR_CODE_BAD_REQUEST);
+}
+
+TEST_F(FeltdTest, QuantizedDeltaFramesShowWhatFloatFramesShow) {
+  auto floats = greeted("floats");
+  const std::uint64_t scene = floats->load_scene_by_name("default").scene_id();
+  auto deltas = greeted("deltas");
+  deltas->join_scene(scene);
+  floats->pause();
+  floats->subscribe_frames(0);
+  client::FrameSubscription subscription;
+  subscription.quantized = true;
+  subscription.deltas = true;
+  subscription.normals = true;
+  const v1::Subscribed granted = deltas->subscribe_frames(subscription);
+  EXPECT_EQ(granted.encoding(), v1::FRAME_ENCODING_QUANTIZED16);
+  EXPECT_TRUE(granted.deltas());
+  client::FrameAssembler assembler;
+  std::uint64_t step = floats->stats().scene().steps();
+  std::size_t float_bytes = 0, delta_bytes = 0;
+  bool any_delta = false;
+  for (int round = 0; round < 10; ++round) {
+    const auto f = frame_from(*floats, step);
+    const auto d = frame_from(*deltas, step);
+    ASSERT_TRUE(f && d);
+    ASSERT_EQ(f->step(), d->step());
+    const auto decoded = assembler.assemble(*d);
+    ASSERT_TRUE(decoded) << decoded.error();
+    deltas->ack_frame_async(d->sequence());
+    any_delta |= d->base_sequence() != 0;
+    if (round > 0) {  // after the frames that carry triangles
+      float_bytes += f->ByteSizeLong();
+      delta_bytes += d->ByteSizeLong() - d->bodies(0).quantized_normals().ByteSizeLong();
+    }
+    for (int i = 0; i < f->bodies(0).positions_size(); ++i) {
+      ASSERT_NEAR(decoded->bodies[0].positions[i], f->bodies(0).positions(i), 3e-5);
+    }
+    step = floats->step(20).step();
+  }
+  EXPECT_TRUE(any_delta);
+  EXPECT_LT(delta_bytes, 0.4 * float_bytes);
+  expect_error([&] { deltas->ack_frame(100000); }, v1::ERROR_CODE_BAD_REQUEST);
+}
+
+TEST_F(FeltdTest, SubscriptionsChooseBodiesAndEndOnUnsubscribe) {
+  auto client = greeted("picky");
+  client->add_body(small_cloth_json());
+  client::FrameSubscription only_flag;
+  only_flag.body_ids = {1};
+  client->subscribe_frames(only_flag);
+  const auto frame = client->next_frame(5s);
+  ASSERT_TRUE(frame);
+  ASSERT_EQ(frame->bodies_size(), 1);
+  EXPECT_EQ(frame->bodies(0).name(), "flag");
+  only_flag.body_ids = {42};
+  expect_error([&] { client->subscribe_frames(only_flag); }, v1::ERROR_CODE_UNKNOWN_ID);
+  v1::ClientMessage bad;
+  bad.mutable_subscribe_frames()->set_deltas(true);
+  expect_error([&] { client->request(bad); }, v1::ERROR_CODE_BAD_REQUEST);
+  bad.mutable_subscribe_frames()->set_deltas(false);
+  bad.mutable_subscribe_frames()->set_encoding(static_cast<v1::FrameEncoding>(7));
+  expect_error([&] { client->request(bad); }, v1::ERROR_CODE_BAD_REQUEST);
+  client->unsubscribe_frames();
+  while (client->next_frame(100ms)) {
+  }
+  EXPECT_FALSE(client->next_frame(300ms));
+  expect_error([&] { client->ack_frame(1); }, v1::ERROR_CODE_WRONG_STATE);
+}
+
+}  // namespace
+}  // namespace felt::test

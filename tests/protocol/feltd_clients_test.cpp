@@ -1,0 +1,279 @@
+// End to end: many clients at once, and clients that misbehave — vanish, read slowly, flood,
+// send garbage, unknown ids or non-finite numbers — while the others are served as before.
+
+#include <sys/socket.h>
+
+#include <cmath>
+#include <thread>
+
+#include <google/protobuf/descriptor.h>
+
+#include "feltd_fixture.hpp"
+#include "wire/frame_codec.hpp"
+#include "wire/message_codec.hpp"
+
+namespace felt::test {
+namespace {
+
+TEST_F(FeltdTest, EveryRequestTypeGetsItsOwnReplyOrAnError) {
+  auto client = greeted("curious");
+  client->subscribe_frames(1);  // so that AckFrame has something to acknowledge
+  const auto* body = v1::ClientMessage::descriptor()->FindOneofByName("body");
+  ASSERT_NE(body, nullptr);
+  const google::protobuf::Reflection* reflection = v1::ClientMessage::GetReflection();
+  int tried = 0;
+  for (int f = 0; f < body->field_count(); ++f) {
+    const auto* field = body->field(f);
+    if (field->name() == "hello" || field->name() == "destroy_scene" ||
+        field->name() == "leave_scene") {
+      continue;  // answered elsewhere; they would end this client's scene
+    }
+    v1::ClientMessage message;
+    reflection->MutableMessage(&message, field);  // the request with every field unset
+    const std::uint64_t id = client->send(message);
+    std::optional<v1::ServerMessage> reply;
+    while ((reply = client->receive(5s)) && reply->request_id() != id) {
+    }
+    ASSERT_TRUE(reply) << field->name();
+    if (reply->has_error()) {
+      EXPECT_NE(reply->error().code(), v1::ERROR_CODE_UNKNOWN_MESSAGE) << field->name();
+      EXPECT_NE(reply->error().code(), v1::ERROR_CODE_INTERNAL) << field->name();
+      EXPECT_EQ(reply->error().request_id(), id);
+    }
+    ++tried;
+  }
+  EXPECT_GE(tried, 20);
+  // a body this server does not know: an unknown field number of the oneof
+  std::string unknown;
+  wire::append_varint(unknown, (999u << 3) | 2);  // field 999, length-delimited
+  wire::append_varint(unknown, 0);
+  std::string frame;
+  wire::append_frame(frame, unknown);
+  client->send_raw(frame);
+  const auto reply = client->receive(5s);
+  ASSERT_TRUE(reply);
+  EXPECT_EQ(reply->error().code(), v1::ERROR_CODE_UNKNOWN_MESSAGE);
+}
+
+TEST_F(FeltdTest, EightClientsTouchAndWatchOneSceneEachWithItsOwnProxy) {
+  std::vector<std::unique_ptr<Client>> clients;
+  for (int c = 0; c < 8; ++c) {
+    clients.push_back(greeted("c" + std::to_string(c)));
+    clients.back()->subscribe_frames(30);
+  }
+  EXPECT_EQ(clients[0]->stats().scene().clients(), 8u);
+  for (int round = 0; round < 20; ++round) {
+    for (int c = 0; c < 8; ++c) {
+      // each presses its own spot of the curtain, 1 cm in front
+      const double x = -0.35 + 0.1 * c;
+      const v1::ForceUpdate force = clients[c]->proxy_update(0, {x, 1.2, 0.01});
+      if (round == 0) {
+        EXPECT_TRUE(force.in_contact()) << c;
+        EXPECT_GT(force.force().z(), 1) << c;
+      }
+    }
+  }
+  for (auto& client : clients) {
+    const auto frame = client->next_frame(5s);
+    ASSERT_TRUE(frame);
+    EXPECT_EQ(frame->bodies(0).positions_size(), 3 * 400);
+  }
+  // every client's 20 updates were solved
+  EXPECT_GE(clients[0]->stats().scene().haptic_updates(), 160u);
+}
+
+TEST_F(FeltdTest, AClientThatVanishesMidStreamHurtsNoOne) {
+  auto steady = greeted("steady");
+  steady->subscribe_frames(60);
+  {
+    Client vanishing;
+    connect(vanishing);
+    vanishing.hello("vanishing");
+    vanishing.subscribe_frames(240);
+    vanishing.proxy_update(0, {0, 1.2, 0.01});
+    // half a request, then gone without a goodbye
+    std::string frame;
+    v1::ClientMessage message;
+    message.mutable_proxy_update()->mutable_position()->set_x(1);
+    wire::append_message(frame, message);
+    vanishing.send_raw(frame.substr(0, frame.size() / 2));
+  }
+  const auto left = steady->wait_event(v1::EVENT_KIND_CLIENT_LEFT, 5s);
+  ASSERT_TRUE(left);
+  EXPECT_EQ(left->client_name(), "vanishing");
+  EXPECT_TRUE(steady->next_frame(5s));
+  EXPECT_FALSE(steady->proxy_update(0, {5, 5, 5}).in_contact());
+  EXPECT_EQ(steady->stats().server().clients(), 1u);
+}
+
+TEST_F(FeltdTest, ASlowReaderSkipsFramesButNeverReplies) {
+  auto slow = greeted("slow");
+  const std::uint64_t scene =
+      slow->load_scene_json(R"({"bodies": [{"type": "cloth", "grid": {"nx": 100, "ny": 100}}]})")
+          .scene_id();
+  auto fast = greeted("fast");
+  fast->join_scene(scene);
+  slow->subscribe_frames(240);  // 120 kB frames, 29 MB/s: more than the socket buffers hold
+  // requests pipelined while not reading for two seconds
+  std::vector<std::uint64_t> ids;
+  for (int i = 0; i < 40; ++i) {
+    v1::ClientMessage stats;
+    stats.mutable_get_stats();
+    ids.push_back(slow->send(stats));
+    std::this_thread::sleep_for(50ms);
+    EXPECT_FALSE(fast->proxy_update(0, {5, 5, 5}).in_contact());  // the others are served
+  }
+  std::size_t replies = 0;
+  std::uint64_t skipped = 0, queued = 0;
+  while (replies < ids.size()) {
+    const auto message = slow->receive(10s);
+    ASSERT_TRUE(message);
+    if (message->has_frame()) {
+      skipped += message->frame().skipped();
+      continue;
+    }
+    if (message->has_event()) continue;
+    ASSERT_EQ(message->request_id(), ids[replies]) << "replies come in order, none dropped";
+    queued = std::max(queued, message->stats().session().queued_reply_bytes());
+    ++replies;
+  }
+  // the frame that says how many were skipped comes after the replies queued before it
+  for (int i = 0; i < 5 && skipped == 0; ++i) {
+    const auto frame = slow->next_frame(5s);
+    ASSERT_TRUE(frame);
+    skipped += frame->skipped();
+  }
+  EXPECT_GT(skipped, 0u);
+  EXPECT_GT(slow->stats().session().frames_skipped(), 0u);
+  // what waits for the slow client is its replies and one frame, not a pile of frames
+  EXPECT_LT(queued, 64u * 1024);
+}
+
+class SmallBacklog : public FeltdTest {
+  std::vector<std::string> extra_args() const override {
+    return {"--max-reply-backlog",      "65536", "--max-clients", "3",
+            "--max-requests-in-flight", "2",     "--max-bodies",  "3"};
+  }
+};
+
+TEST_F(SmallBacklog, AClientThatNeverReadsItsRepliesIsDisconnected) {
+  auto good = greeted("good");
+  Client flooder;
+  connect(flooder);
+  flooder.hello("flooder");
+  // 50,000 updates unread: their replies pass any socket buffer and the 64 kB backlog
+  std::string burst;
+  for (int i = 0; i < 50'000; ++i) {
+    v1::ClientMessage message;
+    message.set_request_id(i + 1);
+    v1::ProxyUpdate& update = *message.mutable_proxy_update();
+    update.mutable_position()->set_x(5);
+    wire::append_message(burst, message);
+  }
+  try {
+    flooder.send_raw(burst);
+  } catch (const ClientError&) {
+    // the server may hang up while the burst is still being written
+  }
+  ASSERT_TRUE(good->wait_event(v1::EVENT_KIND_CLIENT_LEFT, 10s));
+  EXPECT_FALSE(good->proxy_update(0, {5, 5, 5}).in_contact());
+  EXPECT_TRUE(server_->running());
+}
+
+TEST_F(SmallBacklog, ClientsBodiesAndRequestsInFlightAreLimited) {
+  auto first = greeted("first");
+  auto second = greeted("second");
+  auto third = greeted("third");
+  Client fourth;
+  connect(fourth);
+  const auto refused = fourth.receive(5s);
+  ASSERT_TRUE(refused);
+  EXPECT_EQ(refused->error().code(), v1::ERROR_CODE_LIMIT_EXCEEDED);
+  EXPECT_THROW(fourth.receive(5s), ClientError);  // and closed
+  third->close();
+  std::this_thread::sleep_for(100ms);
+  greeted("fourth, once there is room");
+
+  // the default scene has 1 body and may have 3
+  first->add_body(small_cloth_json(2));
+  first->add_body(small_cloth_json(3));
+  expect_error([&] { first->add_body(small_cloth_json(4)); }, v1::ERROR_CODE_LIMIT_EXCEEDED);
+
+  // two long requests in flight, the third refused at once
+  first->load_scene_by_name("default");
+  first->pause();
+  std::vector<std::uint64_t> ids;
+  for (int i = 0; i < 3; ++i) {
+    v1::ClientMessage step;
+    step.mutable_step_scene()->set_steps(20'000);
+    ids.push_back(first->send(step));
+  }
+  int errors = 0, statuses = 0;
+  while (errors + statuses < 3) {
+    const auto reply = first->receive(30s);
+    ASSERT_TRUE(reply);
+    if (reply->has_error()) {
+      EXPECT_EQ(reply->request_id(), ids[2]);
+      EXPECT_EQ(reply->error().code(), v1::ERROR_CODE_LIMIT_EXCEEDED);
+      ++errors;
+    } else if (reply->has_scene_status()) {
+      ++statuses;
+    }
+  }
+  EXPECT_EQ(errors, 1);
+}
+
+TEST_F(FeltdTest, UnknownIdsAndNonFiniteNumbersGetErrorsAndNothingChanges) {
+  auto client = greeted("sloppy");
+  expect_error([&] { client->join_scene(12345); }, v1::ERROR_CODE_UNKNOWN_ID);
+  expect_error([&] { client->remove_body(77); }, v1::ERROR_CODE_UNKNOWN_ID);
+  expect_error([&] { client->pin_particles(77, {1}, {}); }, v1::ERROR_CODE_UNKNOWN_ID);
+  expect_error([&] { client->close_proxy(3); }, v1::ERROR_CODE_UNKNOWN_ID);
+  expect_error([&] { client->destroy_scene(99); }, v1::ERROR_CODE_UNKNOWN_ID);
+  expect_error([&] { client->restore_state(5); }, v1::ERROR_CODE_UNKNOWN_ID);
+  expect_error([&] { client->proxy_update(0, {0, NAN, 0}); }, v1::ERROR_CODE_BAD_REQUEST);
+  expect_error([&] { client->proxy_update(0, {0, 0, -INFINITY}); }, v1::ERROR_CODE_BAD_REQUEST);
+  v1::SetBodyParameters set;
+  set.set_body_id(0);
+  set.set_structural_stiffness(NAN);
+  expect_error([&] { client->set_body_parameters(set); }, v1::ERROR_CODE_BAD_REQUEST);
+  set.set_structural_stiffness(1e300);
+  expect_error([&] { client->set_body_parameters(set); }, v1::ERROR_CODE_BAD_REQUEST);
+  set.clear_structural_stiffness();
+  set.set_integrator("warp_drive");
+  expect_error([&] { client->set_body_parameters(set); }, v1::ERROR_CODE_BAD_REQUEST);
+  v1::CreateScene create;
+  create.mutable_gravity()->set_y(NAN);
+  expect_error([&] { client->create_scene(create); }, v1::ERROR_CODE_BAD_SCENE);
+  // the scene runs on, finite
+  client->subscribe_frames(0);
+  const auto frame = client->next_frame(5s);
+  ASSERT_TRUE(frame);
+  for (float x : frame->bodies(0).positions()) ASSERT_TRUE(std::isfinite(x));
+}
+
+TEST_F(FeltdTest, ATruncatedFrameThenSilenceLeavesTheServerServing) {
+  Client truncated;
+  connect(truncated);
+  std::string prefix;
+  wire::append_varint(prefix, 100);
+  truncated.send_raw(prefix + "only ten b");  // 10 of the 100 bytes, then nothing
+  auto other = greeted("other");
+  EXPECT_FALSE(other->proxy_update(0, {5, 5, 5}).in_contact());
+  EXPECT_FALSE(truncated.receive(300ms));  // the server waits for the rest, quietly
+  truncated.close();
+  EXPECT_FALSE(other->proxy_update(0, {5, 5, 5}).in_contact());
+}
+
+TEST_F(FeltdTest, ShutdownTellsEveryClientFirst) {
+  auto a = greeted("a");
+  auto b = greeted("b");
+  a->subscribe_frames(60);
+  ASSERT_EQ(server_->stop(SIGTERM, 5s), 0);
+  for (Client* client : {a.get(), b.get()}) {
+    EXPECT_TRUE(client->wait_event(v1::EVENT_KIND_SERVER_SHUTDOWN, 5s));
+  }
+}
+
+}  // namespace
+}  // namespace felt::test

@@ -1,0 +1,77 @@
+#pragma once
+// What the end-to-end tests share: the real feltd on port 0 serving the default scene, and
+// small checks.
+
+#include <signal.h>
+
+#include <array>
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "felt_client.hpp"
+#include "feltd_process.hpp"
+
+namespace felt::test {
+
+namespace v1 = felt::v1;
+using client::Client;
+using client::ClientError;
+using namespace std::chrono_literals;
+
+inline std::vector<std::string> default_args() {
+  return {"--scene-dir", FELT_SCENE_DIR, "--scene", std::string(FELT_SCENE_DIR) + "/default.json"};
+}
+
+/// A feltd serving the default scene; tests that need other flags override extra_args().
+class FeltdTest : public ::testing::Test {
+ protected:
+  virtual std::vector<std::string> extra_args() const { return {}; }
+  void SetUp() override {
+    std::vector<std::string> args = default_args();
+    for (std::string& arg : extra_args()) args.push_back(std::move(arg));
+    server_ = std::make_unique<FeltdProcess>(args);
+  }
+  void TearDown() override {
+    if (server_ && server_->running()) {
+      EXPECT_EQ(server_->stop(SIGTERM, 5s), 0);
+    }
+  }
+  void connect(Client& client) { client.connect("127.0.0.1", server_->port()); }
+  /// A connected client that has said hello as `name`.
+  std::unique_ptr<Client> greeted(const std::string& name) {
+    auto client = std::make_unique<Client>();
+    connect(*client);
+    client->hello(name);
+    return client;
+  }
+
+  std::unique_ptr<FeltdProcess> server_;
+};
+
+/// Runs `call` and expects it to throw the server's error `code`.
+template <typename Call>
+void expect_error(Call call, v1::ErrorCode code) {
+  try {
+    call();
+    ADD_FAILURE() << "no error (expected code " << code << ")";
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), code) << e.what();
+  }
+}
+
+inline std::array<double, 3> vertex(const v1::BodyFrame& body, int v) {
+  return {body.positions(3 * v), body.positions(3 * v + 1), body.positions(3 * v + 2)};
+}
+
+/// A small hanging cloth as AddBody takes it.
+inline std::string small_cloth_json(double x = 2.0) {
+  return R"({"type": "cloth", "name": "flag", "grid": {"nx": 6, "ny": 6, "width": 0.5,
+             "height": 0.5, "center": [)" +
+         std::to_string(x) + R"(, 1.5, 0]}, "pin": "top_corners"})";
+}
+
+}  // namespace felt::test

@@ -1,0 +1,157 @@
+"""The Python client (client_python/felt_client.py) against a real feltd.
+
+Environment: FELTD (the feltd binary), FELT_SCENE_DIR (the repository's scenes/), and a
+PYTHONPATH holding the generated felt.v1 modules and client_python/. Exits non-zero on failure.
+"""
+
+import math
+import os
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import traceback
+
+from felt.v1 import error_pb2, events_pb2
+from felt_client import Client, FeltError, encode_varint, take_messages
+
+TIMEOUT = 5.0  # seconds for any one thing the server should do
+
+
+def expect(condition, what):
+    if not condition:
+        raise AssertionError(what)
+
+
+def expect_error(code, call, *args):
+    try:
+        reply = call(*args)
+    except FeltError as error:
+        expect(error.code == code, f"wanted {error_pb2.ErrorCode.Name(code)}, got {error}")
+        return
+    raise AssertionError(f"wanted {error_pb2.ErrorCode.Name(code)}, got a {type(reply).__name__}")
+
+
+def start_feltd(log):
+    """feltd on a free port, and that port (from its first stdout line)."""
+    scene_dir = os.environ["FELT_SCENE_DIR"]
+    process = subprocess.Popen(
+        [os.environ["FELTD"], "serve", "--listen", "127.0.0.1:0", "--scene-dir", scene_dir,
+         "--scene", os.path.join(scene_dir, "default.json")],
+        stdout=log, stdin=subprocess.DEVNULL)
+    deadline = time.monotonic() + TIMEOUT
+    while time.monotonic() < deadline and process.poll() is None:
+        log.seek(0)
+        line = log.readline()
+        if line.endswith(b"\n"):
+            expect(line.startswith(b"listening on "), f"feltd's first line: {line!r}")
+            return process, int(line.rsplit(b":", 1)[1])
+        time.sleep(0.02)
+    process.kill()
+    raise AssertionError(f"feltd did not say where it listens (exit code {process.poll()})")
+
+
+def test_welcome(client, port):
+    welcome = client.welcome
+    expect(welcome.protocol_version == 1, f"protocol_version {welcome.protocol_version}")
+    expect(len(welcome.capabilities) > 0, "no capabilities")
+    expect(welcome.scene_id != 0, "not in the default scene")
+
+
+def test_hello_required(client, port):
+    with Client("127.0.0.1", port, timeout=TIMEOUT) as stranger:
+        expect_error(error_pb2.ERROR_CODE_HELLO_REQUIRED, stranger.get_stats)
+
+
+def test_list_scenes(client, port):
+    files = client.list_scenes().files
+    expect("default" in files, f"scene files {list(files)}")
+
+
+def test_frames(client, port):
+    client.subscribe_frames(max_rate_hz=60)
+    first = client.next_frame()
+    curtain = next((body for body in first.bodies if body.body_id == 0), None)
+    expect(curtain is not None, f"no body 0 in {[body.body_id for body in first.bodies]}")
+    expect(len(curtain.triangles) > 0, "the first frame has no triangles")
+    expect(curtain.vertex_count == 400, f"vertex_count {curtain.vertex_count}")
+    expect(len(curtain.positions) == 3 * 400, f"{len(curtain.positions)} position floats")
+    client.next_frame()
+    third = client.next_frame()
+    expect(third.step > first.step, f"step {first.step}, two frames later {third.step}")
+    client.request(unsubscribe_frames={})
+
+
+def test_touch(client, port):
+    touch = client.proxy_update(0, (0.0, 1.2, 0.01))
+    expect(touch.in_contact, "not in contact")
+    expect(2 < touch.force.z < 8, f"force z {touch.force.z} N")
+
+
+def test_nan_position(client, port):
+    expect_error(error_pb2.ERROR_CODE_BAD_REQUEST, client.proxy_update, 0, (math.nan, 1.2, 0.01))
+    # in front of the curtain, out of its reach: the touch before pushed it back and it swings
+    free = client.proxy_update(0, (0.0, 1.2, 0.5))
+    expect(not free.in_contact and abs(free.contact_point.z - 0.5) < 1e-6, f"after the NaN: {free}")
+
+
+def test_garbage(client, port):
+    # a raw socket: Client only sends well-formed messages
+    with socket.create_connection(("127.0.0.1", port), timeout=TIMEOUT) as raw:
+        raw.sendall(encode_varint(10) + b"\xff" * 10)
+        received = bytearray()
+        while data := raw.recv(4096):  # until the server closes the connection
+            received += data
+    replies = take_messages(received)
+    expect(len(replies) == 1 and replies[0].WhichOneof("body") == "error",
+           f"replies {replies}")
+    code = replies[0].error.code
+    expect(code == error_pb2.ERROR_CODE_MALFORMED_FRAME, error_pb2.ErrorCode.Name(code))
+    client.get_stats()  # the other connection still works
+
+
+def test_stats(client, port):
+    stats = client.get_stats()
+    expect(stats.HasField("scene"), "no scene in the stats")
+    expect(stats.scene.steps > 0, f"steps {stats.scene.steps}")
+
+
+def test_shutdown(client, port, process):
+    process.send_signal(signal.SIGTERM)
+    # other connections joining and leaving the scene are events too
+    deadline = time.monotonic() + TIMEOUT
+    shutdown = None
+    while shutdown is None:
+        event = client.next_event(deadline - time.monotonic())
+        if event.kind == events_pb2.EVENT_KIND_SERVER_SHUTDOWN:
+            shutdown = event
+    expect(shutdown.scene_id == client.welcome.scene_id, f"shutdown in scene {shutdown.scene_id}")
+    expect(process.wait(TIMEOUT) == 0, f"feltd exited with {process.returncode}")
+
+
+def main():
+    with tempfile.TemporaryFile() as log:
+        process, port = start_feltd(log)
+        try:
+            with Client("127.0.0.1", port, timeout=TIMEOUT) as client:
+                client.hello("python-test")
+                for test in (test_welcome, test_hello_required, test_list_scenes, test_frames,
+                             test_touch, test_nan_position, test_garbage, test_stats):
+                    test(client, port)
+                    print("ok", test.__name__)
+                test_shutdown(client, port, process)
+                print("ok", test_shutdown.__name__)
+        except Exception:
+            traceback.print_exc()
+            return 1
+        finally:
+            if process.poll() is None:
+                process.kill()
+                process.wait()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
