@@ -185,6 +185,8 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->expected(3);
   bench_cmd->add_option("--csv", bench.csv, "Every round trip (CSV)");
+  bench_cmd->add_option("--slow-readers", bench.slow_readers,
+                        "More clients that subscribe to frames and never read them");
   scene_options(bench_cmd, common);
 
   CLI11_PARSE(app, argc, argv);

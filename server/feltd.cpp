@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <thread>
 
 #include <CLI/CLI.hpp>
 #include <boost/asio.hpp>
@@ -27,6 +28,7 @@ struct ServeOptions {
   std::string scene_dir = "scenes";
   std::vector<std::string> scenes;
   bool status = false;
+  unsigned io_threads = 2;
   felt::net::ServerOptions limits;
 };
 
@@ -105,7 +107,9 @@ int serve(const ServeOptions& options) {
               static_cast<unsigned>(endpoint->port()));
   std::fflush(stdout);
 
-  asio::steady_timer status_timer(io);
+  // the daemon's own timers and signals take turns on one strand; sessions have theirs
+  const auto control = asio::make_strand(io);
+  asio::steady_timer status_timer(control);
   std::uint64_t last_haptic_updates = 0;
   std::function<void()> schedule_status = [&] {
     status_timer.expires_after(std::chrono::seconds(1));
@@ -118,10 +122,10 @@ int serve(const ServeOptions& options) {
   if (options.status) schedule_status();
 
   // SIGINT/SIGTERM: stop accepting, close the sessions, finish the current steps, exit 0
-  asio::signal_set signals(io, SIGINT, SIGTERM);
+  asio::signal_set signals(control, SIGINT, SIGTERM);
   // on a signal: close the sessions on their strands, then stop once they are gone (or after
   // two seconds, so that a stuck session cannot keep the process alive)
-  asio::steady_timer drain_timer(io);
+  asio::steady_timer drain_timer(control);
   std::function<void(std::chrono::steady_clock::time_point)> drain =
       [&](std::chrono::steady_clock::time_point deadline) {
         if (server.client_count() == 0 || std::chrono::steady_clock::now() > deadline) {
@@ -142,8 +146,20 @@ int serve(const ServeOptions& options) {
     server.shutdown();
     drain(std::chrono::steady_clock::now() + std::chrono::seconds(2));
   });
+  // more than one thread runs the network, so that a client's haptic update is answered
+  // while another thread builds a frame for someone else
+  std::vector<std::jthread> network;
+  for (unsigned t = 1; t < options.io_threads; ++t) network.emplace_back([&io] { io.run(); });
   io.run();
+  network.clear();
+  // an orderly end: the scenes stop (cancelling what they had queued), the loader finishes,
+  // and every session still open is closed and runs down while the io_context still runs, so
+  // that nothing is destroyed inside its destructor
   scenes.stop_all();
+  context.loader.join();
+  server.close_all();
+  io.restart();
+  io.run();
   return 0;
 }
 
@@ -320,6 +336,11 @@ int main(int argc, char** argv) {
                    "Scene file to load at start; the first is the one new clients join")
       ->check(CLI::ExistingFile);
   serve_cmd->add_flag("--status", serve_options.status, "Print a status line every second");
+  serve_cmd
+      ->add_option("--io-threads", serve_options.io_threads,
+                   "Threads that run the network (each client's requests stay in order)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   serve_cmd->add_option("--token", limits.token,
                         "Shared secret every Hello must carry (default: $FELT_TOKEN)");
   serve_cmd->add_option("--max-clients", limits.max_clients, "Connections served at once")

@@ -26,6 +26,7 @@ struct Device {
   client::AsyncClient client;
   std::mutex mutex;
   std::vector<double> round_trips_us;
+  std::vector<double> server_us;  ///< of each round trip, the server's share (receive to send)
   std::uint64_t sent = 0;
   std::atomic<std::uint64_t> frames{0};
   std::atomic<std::uint64_t> frame_bytes{0};
@@ -52,6 +53,8 @@ int bench_latency(const Common& common, const BenchOptions& o) {
     d->client.on_force([d](const v1::ForceUpdate& force, std::uint64_t received_us) {
       std::lock_guard lock(d->mutex);
       d->round_trips_us.push_back(static_cast<double>(received_us - force.client_time_us()));
+      d->server_us.push_back(
+          1e-3 * static_cast<double>(force.server_send_ns() - force.server_receive_ns()));
     });
     d->client.on_frame([d, deltas = o.deltas](const v1::Frame& frame) {
       ++d->frames;
@@ -88,6 +91,16 @@ int bench_latency(const Common& common, const BenchOptions& o) {
     devices.push_back(std::move(device));
   }
 
+  // clients that take frames at the highest rate and then read nothing: the server must skip
+  // their frames, not queue them, and serve the others as before
+  std::vector<std::unique_ptr<client::Client>> slow;
+  for (int s = 0; s < o.slow_readers; ++s) {
+    auto reader = std::make_unique<client::Client>();
+    connect(*reader, Common{common.server, common.token, "", scene}, "felt-slow-reader");
+    reader->subscribe_frames(1000);
+    slow.push_back(std::move(reader));
+  }
+
   // every device runs its own loop at the rate, each a little beside the others
   Progress progress("bench", o.seconds);
   const Clock::time_point start = Clock::now() + std::chrono::milliseconds(100);
@@ -112,7 +125,7 @@ int bench_latency(const Common& common, const BenchOptions& o) {
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the last replies
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
 
-  std::vector<double> all;
+  std::vector<double> all, server;
   std::uint64_t sent = 0, frames = 0, frame_bytes = 0, skipped = 0;
   std::ofstream csv;
   if (!o.csv.empty()) {
@@ -127,19 +140,24 @@ int bench_latency(const Common& common, const BenchOptions& o) {
     frame_bytes += d.frame_bytes;
     skipped += d.skipped;
     all.insert(all.end(), d.round_trips_us.begin(), d.round_trips_us.end());
+    server.insert(server.end(), d.server_us.begin(), d.server_us.end());
     if (csv) {
       for (double rtt : d.round_trips_us) csv << c << "," << rtt << "\n";
     }
   }
   std::sort(all.begin(), all.end());
+  std::sort(server.begin(), server.end());
   std::printf(
-      "| clients | rate Hz | updates | answered | p50 us | p90 us | p99 us | p99.9 us | "
-      "max us | frames/s per client | kB per frame | skipped |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "| clients | slow readers | rate Hz | updates | answered | p50 us | p90 us | "
+      "p99 us | p99.9 us | max us | server p50 us | server p99 us | frames/s per client | "
+      "kB per frame | skipped |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::printf(
-      "| %d | %.0f | %llu | %zu | %.0f | %.0f | %.0f | %.0f | %.0f | %.1f | %.1f | %llu |\n",
-      o.clients, o.rate, static_cast<unsigned long long>(sent), all.size(), percentile(all, 0.5),
-      percentile(all, 0.9), percentile(all, 0.99), percentile(all, 0.999), percentile(all, 1.0),
+      "| %d | %d | %.0f | %llu | %zu | %.0f | %.0f | %.0f | %.0f | %.0f | %.1f | %.1f | "
+      "%.1f | %.2f | %llu |\n",
+      o.clients, o.slow_readers, o.rate, static_cast<unsigned long long>(sent), all.size(),
+      percentile(all, 0.5), percentile(all, 0.9), percentile(all, 0.99), percentile(all, 0.999),
+      percentile(all, 1.0), percentile(server, 0.5), percentile(server, 0.99),
       static_cast<double>(frames) / o.clients / wall,
       frames ? static_cast<double>(frame_bytes) / frames / 1e3 : 0.0,
       static_cast<unsigned long long>(skipped));

@@ -105,7 +105,8 @@ struct BenchOptions {
   bool quantized = false;
   bool deltas = false;
   std::vector<double> at{0, 1.2, 0.01};
-  std::string csv;  ///< one line per update: client, rtt_us
+  std::string csv;       ///< one line per update: client, rtt_us
+  int slow_readers = 0;  ///< more clients that subscribe at the highest rate and never read
 };
 int bench_latency(const Common& common, const BenchOptions& options);
 

@@ -28,13 +28,13 @@ std::uint16_t generation_of(BodyId id) {
 
 BodyId World::allocate(BodyRef ref) {
   auto free = std::find_if(slots_.begin(), slots_.end(),
-                           [](const Slot& s) { return !s.live && s.generation < kLastGeneration; });
+                           [](const Slot& s) { return !s.live && s.issued < kLastGeneration; });
   if (free == slots_.end()) {
     FELT_CHECK(slots_.size() <= kSlotMask);
     free = slots_.insert(slots_.end(), Slot{});
   } else {
     // every free slot held a body before: the new one is the next generation
-    ++free->generation;
+    free->generation = ++free->issued;
   }
   free->live = true;
   free->ref = ref;
@@ -92,6 +92,13 @@ void World::remove_body(BodyId id) {
   shift_indices(ref.kind, ref.index);
   slots_[slot_of(id)].live = false;
   --live_;
+}
+
+void World::continue_ids_from(const World& previous) {
+  for (std::size_t s = 0; s < previous.slots_.size(); ++s) {
+    if (s == slots_.size()) slots_.push_back(Slot{previous.slots_[s].generation, 0, false, {}});
+    slots_[s].issued = std::max(slots_[s].issued, previous.slots_[s].issued);
+  }
 }
 
 bool World::contains(BodyId id) const {

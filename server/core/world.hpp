@@ -62,6 +62,10 @@ class World {
   BodyId add_collider(const Collider& collider);
   /// Removes a body; its id is never valid again.
   void remove_body(BodyId id);
+  /// For a world built again to replace `previous` (a reset): its bodies keep their ids, and
+  /// every slot continues previous's generations, so no id `previous` handed out ever names a
+  /// later body.
+  void continue_ids_from(const World& previous);
   bool contains(BodyId id) const;
   /// Live bodies, colliders included.
   std::size_t body_count() const { return live_; }
@@ -117,7 +121,8 @@ class World {
   bool healthy(const ClothBody& body, Real& energy) const;
 
   struct Slot {
-    std::uint16_t generation = 0;
+    std::uint16_t generation = 0;  ///< of the body in it (or the last one)
+    std::uint16_t issued = 0;      ///< the highest generation ever handed out for the slot
     bool live = false;
     BodyRef ref;
   };

@@ -32,7 +32,7 @@ void handle_subscribe(Session& session, std::uint64_t id, const v1::SubscribeFra
   }
   FrameOptions options;
   options.rate_hz =
-      asked == 0 ? limits.default_frame_rate_hz : std::min(asked, limits.max_frame_rate_hz);
+      std::min(asked == 0 ? limits.default_frame_rate_hz : asked, limits.max_frame_rate_hz);
   options.normals = subscribe.normals();
   options.bodies.assign(subscribe.body_ids().begin(), subscribe.body_ids().end());
   options.quantized = quantized;

@@ -62,7 +62,7 @@ void FrameStream::stop() {
 }
 
 void FrameStream::restart() {
-  last_step_ = ~std::uint64_t{0};
+  last_version_ = ~std::uint64_t{0};
   topology_sent_.clear();
   building_topology_.clear();
   building_ = {};
@@ -102,7 +102,7 @@ void FrameStream::build(const SceneSnapshot& snapshot, SceneId scene, std::uint6
   building_ = {};
   building_.sequence = next_sequence_++;
   building_topology_.clear();
-  last_step_ = snapshot.step;
+  last_version_ = snapshot.version;
   frame.set_scene_id(scene);
   frame.set_step(snapshot.step);
   frame.set_sim_time(snapshot.sim_time);
@@ -124,23 +124,24 @@ void FrameStream::build(const SceneSnapshot& snapshot, SceneId scene, std::uint6
       put_floats(body.positions, *out->mutable_positions());
       if (options_.normals) put_floats(body.normals, *out->mutable_normals());
     }
-    if (std::find(topology_sent_.begin(), topology_sent_.end(), body.body_id) ==
-        topology_sent_.end()) {
+    const Topology topology{body.body_id, body.surface.get()};
+    if (std::find(topology_sent_.begin(), topology_sent_.end(), topology) == topology_sent_.end()) {
       auto& triangles = *out->mutable_triangles();
       triangles.Reserve(static_cast<int>(3 * body.triangles().size()));
       for (const Triangle& t : body.triangles()) {
         for (std::uint32_t corner : t) triangles.AddAlreadyReserved(corner);
       }
-      topology_sent_.push_back(body.body_id);
-      building_topology_.push_back(body.body_id);
+      std::erase_if(topology_sent_, [&](const Topology& t) { return t.body_id == body.body_id; });
+      topology_sent_.push_back(topology);
+      building_topology_.push_back(topology);
     }
   }
   // bodies that are gone need their triangles again should their id ever come back
-  std::erase_if(topology_sent_, [&](BodyId id) { return !snapshot.find(id); });
+  std::erase_if(topology_sent_, [&](const Topology& t) { return !snapshot.find(t.body_id); });
 }
 
 void FrameStream::dropped() {
-  for (BodyId id : building_topology_) std::erase(topology_sent_, id);
+  for (const Topology& t : building_topology_) std::erase(topology_sent_, t);
   building_topology_.clear();
   building_ = {};
 }

@@ -35,7 +35,7 @@ class FrameStream {
   void restart();
 
   /// Whether `snapshot` is newer than the last frame built.
-  bool has_new(const SceneSnapshot& snapshot) const { return snapshot.step != last_step_; }
+  bool has_new(const SceneSnapshot& snapshot) const { return snapshot.version != last_version_; }
   /// Builds the next frame from `snapshot`; `skipped` frames were dropped before it.
   void build(const SceneSnapshot& snapshot, SceneId scene, std::uint64_t skipped,
              felt::v1::Frame& frame);
@@ -71,10 +71,17 @@ class FrameStream {
   bool active_ = false;
   FrameOptions options_;
   std::uint64_t next_sequence_ = 1;
-  std::uint64_t last_step_ = ~std::uint64_t{0};
-  std::vector<BodyId> topology_sent_;
-  std::vector<BodyId> building_topology_;  ///< bodies whose triangles the last frame carries
-  FrameRecord building_;                   ///< the last frame built
+  std::uint64_t last_version_ = ~std::uint64_t{0};
+  /// the bodies (and which of their surfaces: a reset brings new ones under old ids) whose
+  /// triangles the client has
+  struct Topology {
+    BodyId body_id = 0;
+    const std::vector<Triangle>* surface = nullptr;
+    bool operator==(const Topology&) const = default;
+  };
+  std::vector<Topology> topology_sent_;
+  std::vector<Topology> building_topology_;  ///< those the last frame carries
+  FrameRecord building_;                     ///< the last frame built
   std::deque<FrameRecord> written_;
   std::optional<FrameRecord> base_;  ///< the latest acknowledged frame still kept
   std::vector<float> scratch_;

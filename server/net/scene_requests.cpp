@@ -163,7 +163,8 @@ void handle_create_scene(Session& session, std::uint64_t id, const v1::CreateSce
 }
 
 void handle_join_scene(Session& session, std::uint64_t id, const v1::JoinScene& join) {
-  if (join.scene_id() != session.scene_id() && !session.join(join.scene_id())) {
+  const bool already_there = session.scene() && join.scene_id() == session.scene_id();
+  if (!already_there && !session.join(join.scene_id())) {
     session.send_error(id, v1::ERROR_CODE_UNKNOWN_ID,
                        "no scene " + std::to_string(join.scene_id()));
     return;

@@ -10,7 +10,7 @@ namespace asio = boost::asio;
 using asio::ip::tcp;
 
 Server::Server(asio::io_context& io, ServerContext& context)
-    : io_(io), context_(context), acceptor_(io) {}
+    : io_(io), context_(context), acceptor_(asio::make_strand(io)) {}
 
 std::expected<tcp::endpoint, std::string> Server::listen(const std::string& host,
                                                          std::uint16_t port) {
@@ -56,11 +56,21 @@ void Server::accept() {
 }
 
 void Server::shutdown() {
-  boost::system::error_code ignored;
-  acceptor_.close(ignored);
+  // the acceptor is closed on its own strand, never while its handler runs on another thread
+  asio::post(acceptor_.get_executor(), [this] {
+    boost::system::error_code ignored;
+    acceptor_.close(ignored);
+  });
   std::lock_guard lock(sessions_mutex_);
   for (const auto& weak : sessions_) {
     if (auto session = weak.lock()) session->close_gracefully();
+  }
+}
+
+void Server::close_all() {
+  std::lock_guard lock(sessions_mutex_);
+  for (const auto& weak : sessions_) {
+    if (auto session = weak.lock()) session->close();
   }
 }
 

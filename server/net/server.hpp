@@ -26,6 +26,8 @@ class Server {
   /// Stops accepting, tells every session's client that the server stops and closes the
   /// session once what it has queued is written (client_count() falls to 0 as they finish).
   void shutdown();
+  /// Closes every session at once (after shutdown(), for those that did not finish in time).
+  void close_all();
   /// Sessions whose connection is still open.
   std::size_t client_count();
 

@@ -70,7 +70,9 @@ Session::Session(asio::ip::tcp::socket socket, ServerContext& context)
       frame_timer_(socket_.get_executor()) {}
 
 Session::~Session() {
-  leave_scene();
+  // a session normally leaves on its strand when its connection ends; one destroyed with the
+  // io_context at exit must not post events into it
+  leave_scene(true);
   if (counted_) --context_.clients;
 }
 
@@ -270,14 +272,16 @@ bool Session::join(SceneId id) {
   return true;
 }
 
-void Session::leave_scene() {
+void Session::leave_scene(bool quietly) {
   if (!scene_) return;
   close_proxies();
-  SceneEvent left;
-  left.kind = SceneEvent::Kind::kClientLeft;
-  left.client = id_;
-  left.client_name = client_name_;
-  scene_->members().broadcast(std::move(left));
+  if (!quietly) {
+    SceneEvent left;
+    left.kind = SceneEvent::Kind::kClientLeft;
+    left.client = id_;
+    left.client_name = client_name_;
+    scene_->members().broadcast(std::move(left));
+  }
   membership_.reset();
   scene_.reset();
   // a scene a client loaded lives as long as some session is in it
@@ -289,7 +293,8 @@ void Session::leave_scene() {
 }
 
 void Session::on_scene_event(SceneId scene, const SceneEvent& event) {
-  if (closed_ || scene != scene_id_) return;  // from a scene the session has left
+  // from a scene the session has left, or after its goodbye: nothing more
+  if (closed_ || closing_ || scene != scene_id_) return;
   v1::ServerMessage message;
   fill_event(scene, event, *message.mutable_event());
   send(message);

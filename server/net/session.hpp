@@ -88,8 +88,8 @@ class Session : public std::enable_shared_from_this<Session> {
   /// Joins scene `id`, leaving the one it is in (its proxies close, frames restart); false for
   /// an unknown id.
   bool join(SceneId id);
-  /// Leaves the session's scene, if any.
-  void leave_scene();
+  /// Leaves the session's scene, if any, telling the others unless `quietly`.
+  void leave_scene(bool quietly = false);
 
   /// The open proxy `proxy_id`, opening it with the scene's settings if it is not open; null
   /// when the session already has as many proxies as it may.

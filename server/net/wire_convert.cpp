@@ -30,6 +30,8 @@ v1::EventKind event_kind(SceneEvent::Kind kind) {
   switch (kind) {
     case K::kUnrecoverableStep:
       return v1::EVENT_KIND_UNRECOVERABLE_STEP;
+    case K::kRescuedStep:
+      return v1::EVENT_KIND_STEP_RESCUED;
     case K::kBodyAdded:
       return v1::EVENT_KIND_BODY_ADDED;
     case K::kBodyRemoved:

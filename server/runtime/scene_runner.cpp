@@ -68,6 +68,8 @@ void SceneRunner::start() {
 }
 
 void SceneRunner::stop() {
+  // the last member leaving and the server's shutdown may stop a scene at the same time
+  std::lock_guard lock(stop_mutex_);
   if (servo_) servo_->stop();
   if (thread_.joinable()) {
     thread_.request_stop();
@@ -189,12 +191,13 @@ void SceneRunner::reset(ClientId by, Completion<SceneStatus> done) {
       pending.done(std::unexpected(error(RunnerError::Code::kCancelled, "the scene was reset")));
     }
     step_requests_.clear();
+    fresh->world.continue_ids_from(scene.world);
     scene.world = std::move(fresh->world);
     owners_.clear();
     for (BodyId id : scene.world.body_ids()) owners_.emplace_back(id, access_.owner);
     timed_forces_.clear();
     resync_ = true;
-    publish_catalog();
+    publish_bodies();
     SceneEvent e = event(SceneEvent::Kind::kReset, by);
     e.bodies = bodies()->bodies;
     members_.broadcast(std::move(e));
@@ -219,6 +222,7 @@ void SceneRunner::restore(ClientId by, const WorldState& state, Completion<Scene
     return;
   }
   resync_ = true;
+  publish();
   members_.broadcast(event(SceneEvent::Kind::kStateRestored, by));
   done(status());
 }
@@ -248,57 +252,51 @@ void SceneRunner::restore_state(ClientId by, std::shared_ptr<const WorldState> s
                        });
 }
 
+bool SceneRunner::room_for_body(Completion<BodyInfo>& done) {
+  if (bodies()->bodies.size() < limits_.max_bodies) return true;
+  done(std::unexpected(
+      error(RunnerError::Code::kLimitExceeded,
+            "the scene already has " + std::to_string(limits_.max_bodies) + " bodies")));
+  return false;
+}
+
+void SceneRunner::added(ClientId by, BodyId id, Completion<BodyInfo>& done) {
+  owners_.emplace_back(id, by);
+  publish_bodies();
+  const BodyInfo info = *bodies()->find(id);
+  SceneEvent e = event(SceneEvent::Kind::kBodyAdded, by);
+  e.body_ids = {id};
+  e.bodies = {info};
+  members_.broadcast(std::move(e));
+  done(info);
+}
+
 void SceneRunner::add_body(ClientId by, SceneBody body, Completion<BodyInfo> done) {
   auto shared_body = std::make_shared<SceneBody>(std::move(body));
-  request<BodyInfo>(std::move(done), [this, by, shared_body](Scene& scene,
-                                                             Completion<BodyInfo>& done) {
-    const auto catalog = bodies();
-    if (catalog->bodies.size() >= limits_.max_bodies) {
-      done(std::unexpected(
-          error(RunnerError::Code::kLimitExceeded,
-                "the scene already has " + std::to_string(limits_.max_bodies) + " bodies")));
-      return;
-    }
-    const std::uint64_t particles = visible_particles(*shared_body);
-    if (catalog->particles() + particles > limits_.max_particles) {
-      done(std::unexpected(error(RunnerError::Code::kLimitExceeded,
-                                 std::to_string(particles) + " particles exceed the " +
-                                     std::to_string(limits_.max_particles - catalog->particles()) +
-                                     " the scene's particle limit leaves")));
-      return;
-    }
-    const BodyId id = std::visit([&](auto&& b) { return scene.world.add_body(std::move(b)); },
-                                 std::move(*shared_body));
-    owners_.emplace_back(id, by);
-    publish_catalog();
-    const BodyInfo info = *bodies()->find(id);
-    SceneEvent e = event(SceneEvent::Kind::kBodyAdded, by);
-    e.body_ids = {id};
-    e.bodies = {info};
-    members_.broadcast(std::move(e));
-    done(info);
-  });
+  request<BodyInfo>(
+      std::move(done), [this, by, shared_body](Scene& scene, Completion<BodyInfo>& done) {
+        if (!room_for_body(done)) return;
+        const std::uint64_t used = bodies()->particles();
+        const std::uint64_t particles = visible_particles(*shared_body);
+        if (used + particles > limits_.max_particles) {
+          done(std::unexpected(error(RunnerError::Code::kLimitExceeded,
+                                     std::to_string(particles) + " particles exceed the " +
+                                         std::to_string(limits_.max_particles - used) +
+                                         " the scene's particle limit leaves")));
+          return;
+        }
+        added(by,
+              std::visit([&](auto&& b) { return scene.world.add_body(std::move(b)); },
+                         std::move(*shared_body)),
+              done);
+      });
 }
 
 void SceneRunner::add_collider(ClientId by, const Collider& collider, Completion<BodyInfo> done) {
-  request<BodyInfo>(
-      std::move(done), [this, by, collider](Scene& scene, Completion<BodyInfo>& done) {
-        if (bodies()->bodies.size() >= limits_.max_bodies) {
-          done(std::unexpected(
-              error(RunnerError::Code::kLimitExceeded,
-                    "the scene already has " + std::to_string(limits_.max_bodies) + " bodies")));
-          return;
-        }
-        const BodyId id = scene.world.add_collider(collider);
-        owners_.emplace_back(id, by);
-        publish_catalog();
-        const BodyInfo info = *bodies()->find(id);
-        SceneEvent e = event(SceneEvent::Kind::kBodyAdded, by);
-        e.body_ids = {id};
-        e.bodies = {info};
-        members_.broadcast(std::move(e));
-        done(info);
-      });
+  request<BodyInfo>(std::move(done),
+                    [this, by, collider](Scene& scene, Completion<BodyInfo>& done) {
+                      if (room_for_body(done)) added(by, scene.world.add_collider(collider), done);
+                    });
 }
 
 void SceneRunner::remove_body(ClientId by, BodyId body, Completion<BodyId> done) {
@@ -310,7 +308,7 @@ void SceneRunner::remove_body(ClientId by, BodyId body, Completion<BodyId> done)
     }
     scene.world.remove_body(body);
     std::erase_if(owners_, [body](const auto& owner) { return owner.first == body; });
-    publish_catalog();
+    publish_bodies();
     SceneEvent e = event(SceneEvent::Kind::kBodyRemoved, by);
     e.body_ids = {body};
     members_.broadcast(std::move(e));
@@ -391,7 +389,15 @@ RunnerStats SceneRunner::stats() const {
 }
 
 void SceneRunner::publish() {
-  latest_.store(make_snapshot(scene_.world, latest_.load().get()));
+  auto snapshot = make_snapshot(scene_.world, latest_.load().get());
+  snapshot->version = ++published_;
+  latest_.store(std::move(snapshot));
+}
+
+void SceneRunner::publish_bodies() {
+  // the snapshot first: a client told of a body finds it in the next frame
+  publish();
+  publish_catalog();
 }
 
 void SceneRunner::publish_catalog() {

@@ -87,7 +87,7 @@ class SceneRunner {
   /// Simulated time then follows the wall clock.
   void start();
   /// Finishes the current step and joins the physics and servo threads. Requests still queued
-  /// are cancelled.
+  /// are cancelled. Safe from any thread, and more than once.
   void stop();
 
   const std::string& name() const { return name_; }
@@ -172,6 +172,8 @@ class SceneRunner {
   void step_once();
   void publish();
   void publish_catalog();
+  /// A snapshot and a catalog for bodies that came or went.
+  void publish_bodies();
   /// Makes the haptic frame for the snapshot just published, if proxies are in use.
   void publish_haptics(SteadyClock::time_point now);
   /// Reports rescued and unrecoverable steps not yet reported, at most twice a second.
@@ -181,6 +183,10 @@ class SceneRunner {
   template <class T>
   void request(Completion<T> done, std::function<void(Scene&, Completion<T>&)> run);
   SceneEvent event(SceneEvent::Kind kind, ClientId by) const;
+  /// Whether the scene may have one more body (answers kLimitExceeded otherwise).
+  bool room_for_body(Completion<BodyInfo>& done);
+  /// Publishes body `id`, added by `by`, tells the others and answers with it.
+  void added(ClientId by, BodyId id, Completion<BodyInfo>& done);
   void restore(ClientId by, const WorldState& state, Completion<SceneStatus>& done);
 
   Scene scene_;  ///< written by the physics thread only, once started
@@ -194,6 +200,7 @@ class SceneRunner {
   ReactionAccumulator reactions_;
   SceneMembers members_;
   std::atomic<std::shared_ptr<const SceneSnapshot>> latest_;
+  std::uint64_t published_ = 0;  ///< snapshots published: the next one's version
   std::atomic<std::shared_ptr<const BodyCatalog>> catalog_;
   /// owner of each body, by id; the physics thread's, published through catalog_
   std::vector<std::pair<BodyId, ClientId>> owners_;
@@ -229,6 +236,7 @@ class SceneRunner {
 
   std::mutex wake_mutex_;
   std::condition_variable_any wake_;
+  std::mutex stop_mutex_;  ///< one stop() at a time: a second waits for the first to finish
   std::jthread thread_;
 };
 

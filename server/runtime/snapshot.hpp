@@ -25,6 +25,9 @@ struct BodySnapshot {
 };
 
 struct SceneSnapshot {
+  /// increases with every publication of the scene: a paused scene's snapshot changes without a
+  /// step when a body comes or goes or a state is restored
+  std::uint64_t version = 0;
   std::uint64_t step = 0;
   Real sim_time = 0;
   std::vector<BodySnapshot> bodies;

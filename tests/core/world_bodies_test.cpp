@@ -65,6 +65,26 @@ TEST(WorldBodies, ARemovedIdIsNeverValidAgainAndItsSlotGetsTheNextGeneration) {
   EXPECT_EQ(world.cloth(0), nullptr);
 }
 
+TEST(WorldBodies, AWorldBuiltAgainNeverHandsOutAnIdOfTheOneItReplaces) {
+  World old = mixed_world();
+  const BodyId extra = old.add_body(small_grid_body(4, 4, 100, 0.05, "symplectic_euler"));
+  old.remove_body(0);
+  const BodyId reused = old.add_body(small_grid_body(4, 4, 100, 0.05, "symplectic_euler"));
+  World fresh = mixed_world();  // a reset: the scene file's bodies again
+  fresh.continue_ids_from(old);
+  EXPECT_EQ(fresh.body_ids(), (std::vector<BodyId>{0, 1, 2}));  // they keep their ids
+  fresh.remove_body(0);
+  std::vector<BodyId> later;
+  for (int i = 0; i < 3; ++i) {
+    later.push_back(fresh.add_body(small_grid_body(4, 4, 100, 0.05, "symplectic_euler")));
+  }
+  for (BodyId id : later) {
+    EXPECT_NE(id, extra);
+    EXPECT_NE(id, reused);
+    EXPECT_NE(id, 0u);
+  }
+}
+
 TEST(WorldBodies, RemovingAColliderStopsItHoldingAnything) {
   World world(WorldSettings{Vec3(0, -9.81, 0), 2e-3, 100, 6});
   const BodyId cube = world.add_body(small_cube(Vec3(0, 0.02, 0)));

@@ -231,6 +231,35 @@ TEST_F(FeltdTest, LeavingASceneEndsItsFramesAndProxies) {
   }
   EXPECT_FALSE(client->next_frame(300ms));
   EXPECT_EQ(client->join_scene(scene).scene_id(), scene);
+  // in no scene, joining "scene 0" is an unknown id, not a crash
+  client->leave_scene();
+  expect_error([&] { client->join_scene(0); }, v1::ERROR_CODE_UNKNOWN_ID);
+  EXPECT_TRUE(server_->running());
+}
+
+TEST_F(FeltdTest, APausedSceneStillShowsBodiesComingAndGoing) {
+  auto client = greeted("still");
+  client->load_scene_by_name("default");
+  client->pause();
+  client->subscribe_frames(60);
+  ASSERT_TRUE(client->next_frame(5s));
+  const std::uint32_t added = client->add_body(small_cloth_json()).body().body_id();
+  std::optional<v1::Frame> frame;
+  while ((frame = client->next_frame(5s)) && frame->bodies_size() < 2) {
+  }
+  ASSERT_TRUE(frame);  // without a step
+  EXPECT_EQ(frame->bodies(1).body_id(), added);
+  EXPECT_GT(frame->bodies(1).triangles_size(), 0);
+}
+
+TEST_F(FeltdTest, RescuedStepsAreToldAsSuch) {
+  auto client = greeted("stiff");
+  // symplectic Euler at 1 ms cannot hold these springs in one step, but can in substeps
+  client->load_scene_json(R"({"bodies": [{"type": "cloth", "grid": {"nx": 6, "ny": 6},
+      "springs": {"structural": {"stiffness": 1e6}}}]})");
+  const auto rescued = client->wait_event(v1::EVENT_KIND_STEP_RESCUED, 5s);
+  ASSERT_TRUE(rescued);
+  EXPECT_GT(rescued->count(), 0u);
 }
 
 }  // namespace

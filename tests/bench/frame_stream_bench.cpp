@@ -1,0 +1,65 @@
+// What a frame costs the network thread: building one from a snapshot of a 100 x 100 cloth and
+// serializing it, per encoding (docs/results/service.md). Each client's frame is built on the
+// thread that also answers haptic updates, so this is time those updates may wait.
+
+#include <benchmark/benchmark.h>
+
+#include "core/cloth_grid.hpp"
+#include "felt/v1/envelope.pb.h"
+#include "net/frame_stream.hpp"
+#include "wire/message_codec.hpp"
+
+namespace felt::net {
+namespace {
+
+World hanging_cloth() {
+  World world(WorldSettings{Vec3(0, -9.81, 0), 2e-3, 100, 6});
+  GridClothSpec spec;
+  spec.nx = spec.ny = 100;
+  spec.width = spec.height = 2;
+  spec.total_mass = 4;
+  ClothParams params;
+  params.spring(SpringKind::kStructural) = {true, 30, 0.05};
+  params.spring(SpringKind::kShear) = {true, 8, 0.02};
+  params.spring(SpringKind::kBend) = {true, 1, 0.005};
+  ClothBody cloth("sheet", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
+                  make_integrator("symplectic_euler"));
+  for (std::uint32_t p : grid_pin_indices(spec, GridPinPreset::kTopRow)) cloth.pin(p);
+  world.add_body(std::move(cloth));
+  return world;
+}
+
+void frame(benchmark::State& state, bool quantized, bool deltas, bool normals) {
+  World world = hanging_cloth();
+  std::vector<std::shared_ptr<SceneSnapshot>> snapshots;
+  for (int i = 0; i < 64; ++i) {
+    for (int s = 0; s < 8; ++s) world.step();  // 60 Hz frames of a 500 Hz scene
+    snapshots.push_back(make_snapshot(world));
+  }
+  FrameStream stream;
+  stream.start({60, normals, {}, quantized, deltas});
+  std::size_t i = 0, bytes = 0;
+  std::string out;
+  for (auto _ : state) {
+    v1::ServerMessage message;
+    stream.build(*snapshots[i++ % snapshots.size()], 1, 0, *message.mutable_frame());
+    out.clear();
+    wire::append_message(out, message);
+    stream.written();
+    if (deltas) stream.acknowledge(message.frame().sequence());
+    bytes += out.size();
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["kB"] = benchmark::Counter(static_cast<double>(bytes) / 1e3 /
+                                            static_cast<double>(state.iterations()));
+}
+
+BENCHMARK_CAPTURE(frame, float32, false, false, false)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(frame, float32_normals, false, false, true)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(frame, quantized16, true, false, false)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(frame, quantized16_deltas, true, true, false)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(frame, quantized16_deltas_normals, true, true, true)
+    ->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace felt::net
