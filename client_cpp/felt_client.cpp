@@ -149,15 +149,20 @@ std::vector<v1::SceneEvent> Client::take_events() {
   return std::exchange(events_, {});
 }
 
+bool Client::receive_streamed(std::chrono::steady_clock::time_point deadline) {
+  const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+      deadline - std::chrono::steady_clock::now());
+  if (left.count() <= 0) return false;
+  auto message = receive(left);
+  if (!message) return false;
+  keep_streamed(*message);
+  return true;
+}
+
 std::optional<v1::Frame> Client::next_frame(std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (frames_.empty()) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-        deadline - std::chrono::steady_clock::now());
-    if (left.count() <= 0) return std::nullopt;
-    auto message = receive(left);
-    if (!message) return std::nullopt;
-    keep_streamed(*message);
+    if (!receive_streamed(deadline)) return std::nullopt;
   }
   v1::Frame frame = std::move(frames_.front());
   frames_.pop_front();
@@ -175,12 +180,7 @@ std::optional<v1::SceneEvent> Client::wait_event(v1::EventKind kind,
       events_.erase(it);
       return event;
     }
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-        deadline - std::chrono::steady_clock::now());
-    if (left.count() <= 0) return std::nullopt;
-    auto message = receive(left);
-    if (!message) return std::nullopt;
-    keep_streamed(*message);
+    if (!receive_streamed(deadline)) return std::nullopt;
   }
 }
 

@@ -119,6 +119,9 @@ class Client {
  private:
   /// Keeps a frame or an event that arrived unasked; false for anything else.
   bool keep_streamed(felt::v1::ServerMessage& message);
+  /// Waits until `deadline` for one more message and keeps it if it is streamed (anything
+  /// else, a late reply, is dropped); false when none came.
+  bool receive_streamed(std::chrono::steady_clock::time_point deadline);
 
   boost::asio::io_context io_;
   boost::asio::ip::tcp::socket socket_;

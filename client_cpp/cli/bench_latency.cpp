@@ -101,7 +101,8 @@ int bench_latency(const Common& common, const BenchOptions& o) {
     slow.push_back(std::move(reader));
   }
 
-  // every device runs its own loop at the rate, each a little beside the others
+  // every device runs its own loop at the rate, each a little beside the others and at its own
+  // phase (independent devices do not tick in the same microsecond)
   Progress progress("bench", o.seconds);
   const Clock::time_point start = Clock::now() + std::chrono::milliseconds(100);
   const auto period = std::chrono::duration<double>(1.0 / o.rate);
@@ -112,8 +113,9 @@ int bench_latency(const Common& common, const BenchOptions& o) {
       Device& d = *devices[c];
       const client::Point at{o.at[0] + 0.01 * c, o.at[1], o.at[2]};
       for (std::uint64_t k = 0; k < ticks && d.client.connected(); ++k) {
-        std::this_thread::sleep_until(
-            start + std::chrono::duration_cast<Clock::duration>(period * static_cast<double>(k)));
+        const double phase = static_cast<double>(c) / o.clients;
+        std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
+                                                  period * (static_cast<double>(k) + phase)));
         d.client.send_proxy_update(0, at);
         ++d.sent;
         if (c == 0) progress.update(static_cast<double>(k) / o.rate);

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "cli/commands.hpp"
 
 namespace felt::cli {
@@ -11,15 +13,6 @@ namespace felt::cli {
 namespace v1 = felt::v1;
 
 namespace {
-
-std::string json_array(const std::vector<double>& values) {
-  std::ostringstream out;
-  out.precision(17);
-  out << "[";
-  for (std::size_t i = 0; i < values.size(); ++i) out << (i ? ", " : "") << values[i];
-  out << "]";
-  return out.str();
-}
 
 /// `json` itself, or the contents of the file it names when it starts with '@'.
 std::string json_text(const std::string& json) {
@@ -29,6 +22,13 @@ std::string json_text(const std::string& json) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+/// The scene-file entry of a body of `type`, named `name` when one is given.
+nlohmann::json body_entry(const char* type, const std::string& name) {
+  nlohmann::json body = {{"type", type}};
+  if (!name.empty()) body["name"] = name;
+  return body;
 }
 
 int add(const Common& common, const std::string& body_json) {
@@ -44,30 +44,23 @@ int add(const Common& common, const std::string& body_json) {
 
 int add_cloth(const Common& common, const ClothOptions& o, const std::string& json) {
   if (!json.empty()) return add(common, json_text(json));
-  std::ostringstream body;
-  body.precision(17);
-  body << R"({"type": "cloth")";
-  if (!o.name.empty()) body << R"(, "name": ")" << o.name << '"';
-  body << R"(, "grid": {"nx": )" << o.grid[0] << R"(, "ny": )" << o.grid[1] << R"(, "width": )"
-       << o.size[0] << R"(, "height": )" << o.size[1] << R"(, "center": )" << json_array(o.center)
-       << R"(, "plane": ")" << o.plane << R"("})"
-       << R"(, "mass": )" << o.mass << R"(, "integrator": ")" << o.integrator << '"';
-  if (!o.pin.empty() && o.pin != "none") body << R"(, "pin": ")" << o.pin << '"';
-  body << "}";
-  return add(common, body.str());
+  nlohmann::json body = body_entry("cloth", o.name);
+  body["grid"] = {{"nx", o.grid[0]},     {"ny", o.grid[1]},    {"width", o.size[0]},
+                  {"height", o.size[1]}, {"center", o.center}, {"plane", o.plane}};
+  body["mass"] = o.mass;
+  body["integrator"] = o.integrator;
+  if (!o.pin.empty() && o.pin != "none") body["pin"] = o.pin;
+  return add(common, body.dump());
 }
 
 int add_solid(const Common& common, const SolidOptions& o, const std::string& json) {
   if (!json.empty()) return add(common, json_text(json));
-  std::ostringstream body;
-  body.precision(17);
-  body << R"({"type": "solid")";
-  if (!o.name.empty()) body << R"(, "name": ")" << o.name << '"';
-  body << R"(, "lattice": {"cells": [)" << o.cells[0] << ", " << o.cells[1] << ", " << o.cells[2]
-       << R"(], "size": )" << json_array(o.size) << "}"
-       << R"(, "transform": {"translate": )" << json_array(o.center) << "}"
-       << R"(, "model": ")" << o.model << R"(", "node_mass": )" << o.node_mass << "}";
-  return add(common, body.str());
+  nlohmann::json body = body_entry("solid", o.name);
+  body["lattice"] = {{"cells", o.cells}, {"size", o.size}};
+  body["transform"] = {{"translate", o.center}};
+  body["model"] = o.model;
+  body["node_mass"] = o.node_mass;
+  return add(common, body.dump());
 }
 
 int remove_body(const Common& common, std::uint32_t body) {
