@@ -1,6 +1,8 @@
 // Bodies: add, remove, change parameters, pin, push.
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -224,11 +226,12 @@ void handle_apply_force(Session& session, std::uint64_t id, const v1::ApplyForce
   };
   if (body->kind == "collider") return bad("a collider does not move");
   if (push.vertices().empty()) return bad("name at least one vertex");
-  for (std::uint32_t v : push.vertices()) {
-    if (v >= body->particles) {
-      return bad("vertex " + std::to_string(v) + " out of range (the body has " +
-                 std::to_string(body->particles) + ")");
-    }
+  std::vector<std::uint32_t> vertices(push.vertices().begin(), push.vertices().end());
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  if (vertices.back() >= body->particles) {
+    return bad("vertex " + std::to_string(vertices.back()) + " out of range (the body has " +
+               std::to_string(body->particles) + ")");
   }
   const Vec3 force = to_vec3(push.force());
   if (!force.allFinite() || force.norm() > kMaxForce) {
@@ -237,10 +240,13 @@ void handle_apply_force(Session& session, std::uint64_t id, const v1::ApplyForce
   if (!in_range(push.duration(), 0, kMaxDuration)) {
     return bad(range("duration", 0, kMaxDuration));
   }
-  session.scene()->apply_force(session.client_id(), push.body_id(),
-                               {push.vertices().begin(), push.vertices().end()}, force,
-                               push.duration());
-  reply_body_updated(session, id, push.body_id());
+  auto pending = defer_or_refuse(session, id);
+  if (!pending) return;
+  session.scene()->apply_force(
+      session.client_id(), push.body_id(), std::move(vertices), force, push.duration(),
+      answer<BodyId>(pending, [](const BodyId& body, v1::ServerMessage& message) {
+        message.mutable_body_updated()->set_body_id(body);
+      }));
 }
 
 }  // namespace felt::net

@@ -1,5 +1,6 @@
 // Frames: subscribe, unsubscribe, acknowledge.
 
+#include <algorithm>
 #include <cmath>
 
 #include "net/requests.hpp"
@@ -24,8 +25,11 @@ void handle_subscribe(Session& session, std::uint64_t id, const v1::SubscribeFra
   if (subscribe.deltas() && !quantized) {
     return bad(v1::ERROR_CODE_BAD_REQUEST, "deltas need the QUANTIZED16 encoding");
   }
+  std::vector<BodyId> wanted(subscribe.body_ids().begin(), subscribe.body_ids().end());
+  std::sort(wanted.begin(), wanted.end());
+  wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
   const auto bodies = session.scene()->bodies();
-  for (std::uint32_t body : subscribe.body_ids()) {
+  for (BodyId body : wanted) {
     if (!bodies->find(body)) {
       return bad(v1::ERROR_CODE_UNKNOWN_ID, "no body " + std::to_string(body) + " in this scene");
     }
@@ -34,7 +38,7 @@ void handle_subscribe(Session& session, std::uint64_t id, const v1::SubscribeFra
   options.rate_hz =
       std::min(asked == 0 ? limits.default_frame_rate_hz : asked, limits.max_frame_rate_hz);
   options.normals = subscribe.normals();
-  options.bodies.assign(subscribe.body_ids().begin(), subscribe.body_ids().end());
+  options.bodies = std::move(wanted);
   options.quantized = quantized;
   options.deltas = subscribe.deltas();
   session.subscribe_frames(options);

@@ -72,7 +72,7 @@ void FrameStream::restart() {
 
 bool FrameStream::wanted(BodyId id) const {
   return options_.bodies.empty() ||
-         std::find(options_.bodies.begin(), options_.bodies.end(), id) != options_.bodies.end();
+         std::binary_search(options_.bodies.begin(), options_.bodies.end(), id);
 }
 
 void FrameStream::put_quantized(const BodySnapshot& body, const BodyRecord* base,
@@ -108,6 +108,7 @@ void FrameStream::build(const SceneSnapshot& snapshot, SceneId scene, std::uint6
   frame.set_sim_time(snapshot.sim_time);
   frame.set_skipped(skipped);
   frame.set_sequence(building_.sequence);
+  if (base_ && building_.sequence - base_->sequence > kMaxBaseAge) base_.reset();
   const FrameRecord* base = options_.quantized && options_.deltas && base_ ? &*base_ : nullptr;
   if (base) frame.set_base_sequence(base->sequence);
   for (const BodySnapshot& body : snapshot.bodies) {

@@ -18,7 +18,7 @@ namespace felt::net {
 struct FrameOptions {
   double rate_hz = 60;
   bool normals = false;
-  std::vector<BodyId> bodies;  ///< only these (empty: all)
+  std::vector<BodyId> bodies;  ///< only these, sorted (empty: all)
   bool quantized = false;
   bool deltas = false;  ///< quantized only
 };
@@ -50,6 +50,9 @@ class FrameStream {
 
   /// Frames written and kept as possible delta bases (bounds the memory a client costs).
   static constexpr std::size_t kKeptFrames = 8;
+  /// A delta's base is at most this many frames older than the delta; older, and the frame is a
+  /// key frame until an acknowledgement brings a newer base (a client keeps its last 16).
+  static constexpr std::uint64_t kMaxBaseAge = 12;
 
  private:
   struct BodyRecord {

@@ -69,8 +69,9 @@ void start_scene(Session& session, std::uint64_t id, DocumentSource read, bool s
       context.scenes.leave(scene_id, client);  // nobody is in it: it goes again
       return;
     }
-    session->post([session, scene_id, runner, pending, &context] {
-      if (!session->join(scene_id)) {
+    session->post([session, scene_id, runner, pending, &context, client] {
+      if (session->closed() || !session->join(scene_id)) {
+        context.scenes.leave(scene_id, client);  // nobody will be in it: it goes again
         pending->fail(v1::ERROR_CODE_CANCELLED, "the scene stopped before it could be joined");
         return;
       }

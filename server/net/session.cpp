@@ -25,8 +25,12 @@ class Session::Membership : public SceneListener {
       : session_(std::move(session)), scene_(scene) {}
   void on_scene_event(const SceneEvent& event) override {
     if (auto session = session_.lock()) {
-      asio::post(session->socket_.get_executor(),
-                 [session, scene = scene_, event] { session->on_scene_event(scene, event); });
+      // the reference moves into the handler: this (physics) thread must never hold the last
+      // one, or the session would be destroyed here
+      const auto executor = session->socket_.get_executor();
+      asio::post(executor, [session = std::move(session), scene = scene_, event] {
+        session->on_scene_event(scene, event);
+      });
     }
   }
 
@@ -50,7 +54,9 @@ void PendingReply::send(v1::ServerMessage message) {
   auto session = session_.lock();
   if (!session) return;
   message.set_request_id(request_id_);
-  asio::post(session->socket_.get_executor(), [session, message = std::move(message)] {
+  // as for events: the reference moves into the handler, off the calling thread
+  const auto executor = session->socket_.get_executor();
+  asio::post(executor, [session = std::move(session), message = std::move(message)] {
     --session->in_flight_;
     session->send(message);
   });
@@ -183,7 +189,8 @@ void Session::send(const v1::ServerMessage& message) {
   wire::append_message(bytes, message);
   queued_reply_bytes_ += bytes.size();
   replies_.push_back(std::move(bytes));
-  if (queued_reply_bytes_ > context_.options.max_queued_reply_bytes) {
+  // one reply larger than the backlog on its own (a big saved state) still goes out
+  if (queued_reply_bytes_ > context_.options.max_queued_reply_bytes && replies_.size() > 1) {
     // the client does not read its replies; dropping them would break the protocol
     replies_.clear();
     queued_reply_bytes_ = 0;

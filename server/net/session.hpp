@@ -75,6 +75,8 @@ class Session : public std::enable_shared_from_this<Session> {
   std::shared_ptr<PendingReply> defer(std::uint64_t request_id);
 
   bool greeted() const { return greeted_; }
+  /// The connection has ended.
+  bool closed() const { return closed_; }
   /// The first successful Hello also joins the server's default scene.
   void set_greeted(std::string client_name);
   /// Counts a Hello with a wrong token; true when the connection must close (no endless

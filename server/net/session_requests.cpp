@@ -23,6 +23,15 @@ bool tokens_equal(const std::string& expected, const std::string& given) {
   return diff == 0;
 }
 
+/// At most `bytes` of `text`, cut between characters: a string field that is not UTF-8 would
+/// make every client that parses the events carrying it drop them.
+std::string truncated_utf8(const std::string& text, std::size_t bytes) {
+  if (text.size() <= bytes) return text;
+  std::size_t end = bytes;
+  while (end > 0 && (static_cast<unsigned char>(text[end]) & 0xc0) == 0x80) --end;
+  return text.substr(0, end);
+}
+
 void fill_limits(const ServerOptions& options, v1::Limits& out) {
   out.set_max_frame_bytes(options.max_inbound_frame_bytes);
   out.set_max_requests_in_flight(static_cast<std::uint32_t>(options.max_requests_in_flight));
@@ -52,7 +61,7 @@ void handle_hello(Session& session, std::uint64_t id, const v1::Hello& hello) {
     if (last) session.close_after_replies();
     return;
   }
-  session.set_greeted(hello.client_name().substr(0, kMaxClientName));
+  session.set_greeted(truncated_utf8(hello.client_name(), kMaxClientName));
   reply(session, id, [&](v1::ServerMessage& message) {
     v1::Welcome* welcome = message.mutable_welcome();
     welcome->set_protocol_version(kProtocolVersion);

@@ -14,6 +14,35 @@ std::uint32_t generation_of(SceneId id) {
 
 }  // namespace
 
+SceneRegistry::SceneRegistry() : retirer_([this](std::stop_token stop) { retire_loop(stop); }) {}
+
+SceneRegistry::~SceneRegistry() {
+  stop_all();
+}
+
+void SceneRegistry::retire(std::shared_ptr<SceneRunner> runner) {
+  {
+    std::lock_guard lock(retiring_mutex_);
+    retiring_.push_back(std::move(runner));
+  }
+  retiring_wake_.notify_all();
+}
+
+void SceneRegistry::retire_loop(std::stop_token stop) {
+  std::unique_lock lock(retiring_mutex_);
+  while (retiring_wake_.wait(lock, stop, [this] { return !retiring_.empty(); })) {
+    std::vector<std::shared_ptr<SceneRunner>> batch;
+    batch.swap(retiring_);
+    stopping_ = batch.size();
+    lock.unlock();
+    for (const auto& runner : batch) runner->stop();
+    batch.clear();  // their last references go here, not on a network thread
+    lock.lock();
+    stopping_ = 0;
+    retiring_wake_.notify_all();
+  }
+}
+
 SceneRegistry::Slot* SceneRegistry::slot(SceneId id) {
   const std::uint32_t index = index_of(id);
   if (index >= slots_.size() || slots_[index].generation != generation_of(id)) return nullptr;
@@ -56,7 +85,7 @@ void SceneRegistry::leave(SceneId id, ClientId client) {
     if (found->runner->members().count() > 0 || found->runner->access().persistent) return;
     removed = std::move(found->runner);
   }
-  removed->stop();
+  retire(std::move(removed));
 }
 
 bool SceneRegistry::remove(SceneId id) {
@@ -67,12 +96,15 @@ bool SceneRegistry::remove(SceneId id) {
     if (!found) return false;
     removed = std::move(found->runner);
   }
-  removed->stop();
+  retire(std::move(removed));
   return true;
 }
 
 void SceneRegistry::stop_all() {
   for (const auto& [id, runner] : list()) runner->stop();
+  // and wait until the retiring thread has stopped the scenes removed before
+  std::unique_lock lock(retiring_mutex_);
+  retiring_wake_.wait(lock, [this] { return retiring_.empty() && stopping_ == 0; });
 }
 
 std::size_t SceneRegistry::size() const {

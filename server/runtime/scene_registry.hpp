@@ -2,9 +2,11 @@
 // The live scenes of a server, named by ids that carry a generation so that the id of a
 // removed scene is never mistaken for a later one (Box2D's b2BodyId), and who is in each.
 
+#include <condition_variable>
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -17,6 +19,11 @@ using SceneId = std::uint64_t;
 
 class SceneRegistry {
  public:
+  SceneRegistry();
+  ~SceneRegistry();
+  SceneRegistry(const SceneRegistry&) = delete;
+  SceneRegistry& operator=(const SceneRegistry&) = delete;
+
   /// Takes ownership of a runner and returns its id.
   SceneId add(std::shared_ptr<SceneRunner> runner);
   /// The runner with that id, or nullptr for an unknown or stale id.
@@ -24,12 +31,12 @@ class SceneRegistry {
   /// Adds `member` to scene `id` and returns it (nullptr for an unknown id), under the same
   /// lock as leave(), so a scene is never removed between being found and being joined.
   std::shared_ptr<SceneRunner> join(SceneId id, SceneMembers::Member member);
-  /// Takes `client` out of scene `id`; a scene that is not persistent is removed and stopped
-  /// when its last member leaves.
+  /// Takes `client` out of scene `id`; a scene that is not persistent is removed when its last
+  /// member leaves, and stopped.
   void leave(SceneId id, ClientId client);
-  /// Removes and stops a scene; false for an unknown id.
+  /// Removes a scene and stops it; false for an unknown id.
   bool remove(SceneId id);
-  /// Stops every scene's physics thread (shutdown).
+  /// Stops every scene's physics thread, the removed ones' too (shutdown).
   void stop_all();
   std::size_t size() const;
   /// Every live scene, in slot order.
@@ -42,9 +49,19 @@ class SceneRegistry {
   };
   /// The slot of a live scene `id`, or null; the mutex must be held.
   Slot* slot(SceneId id);
+  /// Hands a removed scene to the retiring thread: stopping waits for the scene's step (or a
+  /// reset's rebuild), and whoever removes it (a network thread) must not wait.
+  void retire(std::shared_ptr<SceneRunner> runner);
+  void retire_loop(std::stop_token stop);
 
   mutable std::mutex mutex_;
   std::vector<Slot> slots_;
+
+  std::mutex retiring_mutex_;
+  std::condition_variable_any retiring_wake_;
+  std::vector<std::shared_ptr<SceneRunner>> retiring_;
+  std::size_t stopping_ = 0;  ///< scenes taken off retiring_ and not stopped yet
+  std::jthread retirer_;
 };
 
 }  // namespace felt

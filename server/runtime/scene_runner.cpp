@@ -217,6 +217,11 @@ void SceneRunner::save_state(ClientId, Completion<SavedState> done) {
 }
 
 void SceneRunner::restore(ClientId by, const WorldState& state, Completion<SceneStatus>& done) {
+  if (!(static_cast<double>(state.step) * time_step_ < kMaxSimTime)) {
+    done(std::unexpected(error(RunnerError::Code::kBadRequest,
+                               "step is too large: the clock must stay below 1e9 s")));
+    return;
+  }
   if (auto restored = felt::restore_state(scene_.world, state); !restored) {
     done(std::unexpected(error(RunnerError::Code::kBadRequest, restored.error())));
     return;
@@ -327,9 +332,18 @@ void SceneRunner::change_body(ClientId by, BodyId body, std::function<void(World
 }
 
 void SceneRunner::apply_force(ClientId, BodyId body, std::vector<std::uint32_t> vertices,
-                              const Vec3& force, Real duration) {
-  post([this, body, vertices = std::move(vertices), force, duration](Scene& scene) mutable {
-    timed_forces_.add(body, std::move(vertices), force, scene.world.time() + duration);
+                              const Vec3& force, Real duration, Completion<BodyId> done) {
+  auto shared_vertices = std::make_shared<std::vector<std::uint32_t>>(std::move(vertices));
+  request<BodyId>(std::move(done), [this, body, shared_vertices, force, duration](
+                                       Scene& scene, Completion<BodyId>& done) {
+    if (timed_forces_.size() >= kMaxTimedForces) {
+      done(std::unexpected(error(RunnerError::Code::kLimitExceeded,
+                                 "the scene already holds " + std::to_string(kMaxTimedForces) +
+                                     " forces; wait for some to end")));
+      return;
+    }
+    timed_forces_.add(body, std::move(*shared_vertices), force, scene.world.time() + duration);
+    done(body);
   });
 }
 

@@ -132,9 +132,10 @@ class SceneRunner {
   /// Runs `change` on a live body's world between steps (nothing if the body is gone by then)
   /// and tells the other clients.
   void change_body(ClientId by, BodyId body, std::function<void(World&)> change);
-  /// `force` on each of `vertices` for `duration` simulated seconds (0: the next step).
+  /// `force` on each of `vertices` for `duration` simulated seconds (0: the next step); at most
+  /// kMaxTimedForces at once in a scene (a paused scene's never expire).
   void apply_force(ClientId by, BodyId body, std::vector<std::uint32_t> vertices, const Vec3& force,
-                   Real duration);
+                   Real duration, Completion<BodyId> done);
 
   /// The latest published snapshot (never null).
   std::shared_ptr<const SceneSnapshot> latest() const { return latest_.load(); }
@@ -159,6 +160,9 @@ class SceneRunner {
   std::vector<HapticRecord> device_states() const;
 
   static constexpr std::size_t kMaxSavedStates = 8;
+  static constexpr std::size_t kMaxTimedForces = 256;
+  /// A restored clock must stay below this (s), so that pacing arithmetic cannot overflow.
+  static constexpr double kMaxSimTime = 1e9;
   static constexpr std::uint32_t kMaxStepsPerRequest = 100'000;
 
  private:

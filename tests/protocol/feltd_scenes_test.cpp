@@ -37,6 +37,13 @@ TEST_F(FeltdTest, AClientIsInTheDefaultSceneOnlyAfterItsHello) {
   const auto joined = watcher->wait_event(v1::EVENT_KIND_CLIENT_JOINED, 5s);
   ASSERT_TRUE(joined);
   EXPECT_EQ(joined->client_name(), "late");
+  // a long name is cut between characters, never inside one: the others still parse the event
+  Client long_name;
+  connect(long_name);
+  long_name.hello(std::string(99, 'a') + "\u00e9t\u00e9");
+  const auto named = watcher->wait_event(v1::EVENT_KIND_CLIENT_JOINED, 5s);
+  ASSERT_TRUE(named);
+  EXPECT_EQ(named->client_name(), std::string(99, 'a'));
 }
 
 TEST_F(FeltdTest, ACreatedSceneIsEmptyAndBelongsToItsCreator) {

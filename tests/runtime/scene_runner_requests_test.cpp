@@ -204,15 +204,37 @@ TEST(SceneRunnerRequests, AForceGivesTheImpulseOfItsDurationAndThenStops) {
   const Vec3 force(0, 0.5, 0);
   const double h = 1e-3;
   // 0.1005 s covers the steps starting at 0, h, ..., 100 h: 101 of them
-  runner.apply_force(0, 0, {60, 61}, force, 0.1005);
+  ASSERT_TRUE(await<BodyId>([&](auto done) {
+    runner.apply_force(0, 0, {60, 61}, force, 0.1005, done);
+  }));
   ASSERT_TRUE(await<SceneStatus>([&](auto done) { runner.step(0, 150, done); }));
   EXPECT_NEAR(momentum(runner, mass).y(), 2 * force.y() * 101 * h, 1e-9);
   ASSERT_TRUE(await<SceneStatus>([&](auto done) { runner.step(0, 100, done); }));
   EXPECT_NEAR(momentum(runner, mass).y(), 2 * force.y() * 101 * h, 1e-9);  // it has stopped
   // a duration of 0: the next step only
-  runner.apply_force(0, 0, {5}, force, 0);
+  ASSERT_TRUE(await<BodyId>([&](auto done) { runner.apply_force(0, 0, {5}, force, 0, done); }));
   ASSERT_TRUE(await<SceneStatus>([&](auto done) { runner.step(0, 20, done); }));
   EXPECT_NEAR(momentum(runner, mass).y(), (2 * 101 + 1) * force.y() * h, 1e-9);
+  runner.stop();
+}
+
+TEST(SceneRunnerRequests, APausedSceneHoldsABoundedNumberOfForces) {
+  SceneRunner runner(flat_cloth_scene());
+  runner.start();
+  ASSERT_TRUE(await<SceneStatus>([&](auto done) { runner.pause(0, done); }));
+  // paused, nothing expires: the scene refuses more than it may hold
+  for (std::size_t i = 0; i < SceneRunner::kMaxTimedForces; ++i) {
+    ASSERT_TRUE(await<BodyId>(
+        [&](auto done) { runner.apply_force(0, 0, {1}, Vec3(0, 1e-3, 0), 3600, done); }));
+  }
+  const auto refused = await<BodyId>(
+      [&](auto done) { runner.apply_force(0, 0, {1}, Vec3(0, 1e-3, 0), 3600, done); });
+  EXPECT_EQ(refused.error().code, RunnerError::Code::kLimitExceeded);
+  // nor does a restored clock go past what pacing can count
+  auto state = std::make_shared<WorldState>();
+  state->step = 10'000'000'000'000'000ull;
+  const auto huge = await<SceneStatus>([&](auto done) { runner.restore_state(0, state, done); });
+  EXPECT_EQ(huge.error().code, RunnerError::Code::kBadRequest);
   runner.stop();
 }
 
