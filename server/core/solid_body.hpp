@@ -139,6 +139,11 @@ class SolidBody {
   Real volume() const { return total_volume(x_, rest_.tets); }
   Real rest_volume() const { return rest_volume_; }
 
+  /// How many vertices clients see: the fine surface's, or without one the nodes.
+  std::size_t surface_vertex_count() const {
+    return embedded_ ? embedded_->vertex_count() : node_count();
+  }
+
   /// The fine surface clients see, when the body carries one.
   const EmbeddedSurface* embedded_surface() const { return embedded_.get(); }
   const std::shared_ptr<const EmbeddedSurface>& shared_embedded_surface() const {

@@ -120,37 +120,41 @@ const BodyRef& World::body_ref(BodyId id) const {
   return slots_[slot_of(id)].ref;
 }
 
+const BodyRef* World::live(BodyId id, BodyRef::Kind kind) const {
+  return contains(id) && body_ref(id).kind == kind ? &body_ref(id) : nullptr;
+}
+
 ClothBody* World::cloth(BodyId id) {
-  if (!contains(id) || body_ref(id).kind != BodyRef::Kind::kCloth) return nullptr;
-  return &cloths()[body_ref(id).index];
+  const BodyRef* ref = live(id, BodyRef::Kind::kCloth);
+  return ref ? &cloths()[ref->index] : nullptr;
 }
 
 const ClothBody* World::cloth(BodyId id) const {
-  if (!contains(id) || body_ref(id).kind != BodyRef::Kind::kCloth) return nullptr;
-  return &cloths_[body_ref(id).index];
+  const BodyRef* ref = live(id, BodyRef::Kind::kCloth);
+  return ref ? &cloths_[ref->index] : nullptr;
 }
 
 SolidBody* World::solid(BodyId id) {
-  if (!contains(id) || body_ref(id).kind != BodyRef::Kind::kSolid) return nullptr;
-  return &solids_.bodies()[body_ref(id).index];
+  const BodyRef* ref = live(id, BodyRef::Kind::kSolid);
+  return ref ? &solids_.bodies()[ref->index] : nullptr;
 }
 
 const SolidBody* World::solid(BodyId id) const {
-  if (!contains(id) || body_ref(id).kind != BodyRef::Kind::kSolid) return nullptr;
-  return &solids_.bodies()[body_ref(id).index];
+  const BodyRef* ref = live(id, BodyRef::Kind::kSolid);
+  return ref ? &solids_.bodies()[ref->index] : nullptr;
 }
 
 std::size_t World::surface_vertex_count(BodyId id) const {
   if (const ClothBody* body = cloth(id)) return body->model().particle_count();
   const SolidBody* solid_body = solid(id);
-  if (!solid_body) return 0;
-  const EmbeddedSurface* surface = solid_body->embedded_surface();
-  return surface ? surface->vertex_count() : solid_body->node_count();
+  return solid_body ? solid_body->surface_vertex_count() : 0;
 }
 
 void World::add_surface_force(BodyId id, std::uint32_t vertex, const Vec3& force) {
-  if (ClothBody* body = cloth(id)) {
-    body->add_external_force(vertex, force);
+  // straight to the body: an external force does not change the energies the health check
+  // carries over, so it must not make the next step recompute them (as cloths() would)
+  if (const BodyRef* ref = live(id, BodyRef::Kind::kCloth)) {
+    cloths_[ref->index].add_external_force(vertex, force);
     return;
   }
   SolidBody* solid_body = solid(id);

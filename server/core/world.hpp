@@ -127,6 +127,8 @@ class World {
     BodyRef ref;
   };
   BodyId allocate(BodyRef ref);
+  /// What `id` names if it is a live body of `kind`, else null.
+  const BodyRef* live(BodyId id, BodyRef::Kind kind) const;
   /// After element `index` of a kind's vector was erased, the later ones moved down by one.
   void shift_indices(BodyRef::Kind kind, std::uint32_t index);
 

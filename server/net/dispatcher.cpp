@@ -6,14 +6,6 @@ namespace felt::net {
 
 using v1::ClientMessage;
 
-void reply(Session& session, std::uint64_t id,
-           const std::function<void(v1::ServerMessage&)>& fill) {
-  v1::ServerMessage message;
-  message.set_request_id(id);
-  fill(message);
-  session.send(message);
-}
-
 std::shared_ptr<PendingReply> defer_or_refuse(Session& session, std::uint64_t id) {
   auto pending = session.defer(id);
   if (!pending) {

@@ -56,8 +56,14 @@ void handle_subscribe(Session& session, std::uint64_t id, const v1::SubscribeFra
 void handle_unsubscribe(Session& session, std::uint64_t id);
 void handle_ack_frame(Session& session, std::uint64_t id, const v1::AckFrame& ack);
 
-/// Sends the reply `fill` writes.
-void reply(Session& session, std::uint64_t id, const std::function<void(v1::ServerMessage&)>& fill);
+/// Sends the reply `fill` writes (a template: this is on the haptic path, once per update).
+template <class Fill>
+void reply(Session& session, std::uint64_t id, Fill&& fill) {
+  v1::ServerMessage message;
+  message.set_request_id(id);
+  fill(message);
+  session.send(message);
+}
 
 /// A reply deferred past the session's turn, or null after answering LIMIT_EXCEEDED.
 std::shared_ptr<PendingReply> defer_or_refuse(Session& session, std::uint64_t id);

@@ -112,9 +112,7 @@ void Session::close_gracefully() {
     event.set_scene_id(self->scene_id_);
     event.set_kind(v1::EVENT_KIND_SERVER_SHUTDOWN);
     self->send(goodbye);
-    self->closing_ = true;
-    self->frame_pending_ = false;
-    self->write_next();
+    self->close_after_replies();
   });
 }
 
@@ -208,7 +206,7 @@ void Session::send_error(std::uint64_t request_id, v1::ErrorCode code, const std
 
 void Session::close_after_replies() {
   closing_ = true;
-  frame_pending_ = false;
+  drop_pending_frame();
   write_next();
 }
 
@@ -235,11 +233,9 @@ void Session::write_next() {
     in_flight_bytes_ = std::move(replies_.front());
     replies_.pop_front();
     queued_reply_bytes_ -= in_flight_bytes_.size();
-    in_flight_is_frame_ = false;
   } else if (frame_pending_ && !closing_) {
     in_flight_bytes_.swap(pending_frame_);
     frame_pending_ = false;
-    in_flight_is_frame_ = true;
     frames_.written();
     ++counters_.frames_sent;
   } else {
@@ -268,35 +264,41 @@ bool Session::join(SceneId id) {
   scene_ = std::move(scene);
   membership_ = std::move(membership);
   // a frame of the previous scene that has not gone out yet is dropped
+  drop_pending_frame();
+  frames_.restart();
+  announce(SceneEvent::Kind::kClientJoined);
+  return true;
+}
+
+void Session::announce(SceneEvent::Kind kind) {
+  SceneEvent event;
+  event.kind = kind;
+  event.client = id_;
+  event.client_name = client_name_;
+  scene_->members().broadcast(std::move(event));
+}
+
+void Session::drop_pending_frame() {
   frame_pending_ = false;
   pending_frame_.clear();
+}
+
+void Session::forget_scene() {
+  close_proxies();
+  membership_.reset();
+  scene_.reset();
+  scene_id_ = 0;
+  drop_pending_frame();
   frames_.restart();
-  SceneEvent joined;
-  joined.kind = SceneEvent::Kind::kClientJoined;
-  joined.client = id_;
-  joined.client_name = client_name_;
-  scene_->members().broadcast(std::move(joined));
-  return true;
 }
 
 void Session::leave_scene(bool quietly) {
   if (!scene_) return;
-  close_proxies();
-  if (!quietly) {
-    SceneEvent left;
-    left.kind = SceneEvent::Kind::kClientLeft;
-    left.client = id_;
-    left.client_name = client_name_;
-    scene_->members().broadcast(std::move(left));
-  }
-  membership_.reset();
-  scene_.reset();
+  if (!quietly) announce(SceneEvent::Kind::kClientLeft);
+  const SceneId left = scene_id_;
+  forget_scene();
   // a scene a client loaded lives as long as some session is in it
-  context_.scenes.leave(scene_id_, id_);
-  scene_id_ = 0;
-  frame_pending_ = false;
-  pending_frame_.clear();
-  frames_.restart();
+  context_.scenes.leave(left, id_);
 }
 
 void Session::on_scene_event(SceneId scene, const SceneEvent& event) {
@@ -305,15 +307,8 @@ void Session::on_scene_event(SceneId scene, const SceneEvent& event) {
   v1::ServerMessage message;
   fill_event(scene, event, *message.mutable_event());
   send(message);
-  if (event.kind == SceneEvent::Kind::kDestroyed) {
-    // the scene is gone from the registry already: only let go of it
-    close_proxies();
-    membership_.reset();
-    scene_.reset();
-    scene_id_ = 0;
-    frame_pending_ = false;
-    frames_.restart();
-  }
+  // the scene is gone from the registry already: only let go of it
+  if (event.kind == SceneEvent::Kind::kDestroyed) forget_scene();
 }
 
 std::uint64_t Session::key_of(std::uint32_t proxy_id) const {
@@ -352,8 +347,7 @@ bool Session::close_proxy(std::uint32_t proxy_id) {
 
 void Session::subscribe_frames(const FrameOptions& options) {
   frames_.start(options);
-  frame_pending_ = false;
-  pending_frame_.clear();
+  drop_pending_frame();
   if (!timer_running_) {
     timer_running_ = true;
     on_frame_tick();
@@ -362,8 +356,7 @@ void Session::subscribe_frames(const FrameOptions& options) {
 
 void Session::unsubscribe_frames() {
   frames_.stop();
-  frame_pending_ = false;
-  pending_frame_.clear();
+  drop_pending_frame();
   frame_timer_.cancel();
   timer_running_ = false;
 }

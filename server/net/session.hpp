@@ -62,7 +62,6 @@ class Session : public std::enable_shared_from_this<Session> {
   // The rest is for the request handlers, on the session's strand.
   ServerContext& context() { return context_; }
   ClientId client_id() const { return id_; }
-  const std::string& client_name() const { return client_name_; }
 
   /// Queues a message; replies and events are never dropped, but a client that lets too many
   /// pile up is disconnected.
@@ -130,6 +129,12 @@ class Session : public std::enable_shared_from_this<Session> {
   void on_frame_tick();
   void on_scene_event(SceneId scene, const SceneEvent& event);
   void shutdown();
+  /// Tells the others in the scene that this client joined or left.
+  void announce(SceneEvent::Kind kind);
+  /// The frame waiting in the slot is not sent.
+  void drop_pending_frame();
+  /// Lets go of the scene: proxies, membership, frames (the registry is the caller's).
+  void forget_scene();
   std::uint64_t key_of(std::uint32_t proxy_id) const;
   void close_proxies();
 
@@ -147,7 +152,6 @@ class Session : public std::enable_shared_from_this<Session> {
   bool frame_pending_ = false;
   std::uint64_t pending_frame_skipped_ = 0;  ///< the `skipped` count the pending frame carries
   std::string in_flight_bytes_;              ///< the bytes async_write is sending
-  bool in_flight_is_frame_ = false;
   bool writing_ = false;
   bool closing_ = false;  ///< a fatal error or goodbye was queued: close once it is written
   bool closed_ = false;

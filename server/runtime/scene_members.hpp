@@ -30,12 +30,9 @@ class SceneMembers {
   void leave(ClientId client);
   std::size_t count() const;
   bool contains(ClientId client) const;
-  /// The name `client` gave in its Hello, or empty.
-  std::string name_of(ClientId client) const;
-
   /// Gives `event` the scene's next sequence number and sends it to every member except
-  /// `event.client` (which has its reply). Returns the event as sent.
-  SceneEvent broadcast(SceneEvent event);
+  /// `event.client` (which has its reply).
+  void broadcast(SceneEvent event);
   /// Sends `event` to every member, `event.client` included (the scene's end).
   void broadcast_to_all(SceneEvent event);
 

@@ -31,8 +31,7 @@ RunnerError error(RunnerError::Code code, std::string message) {
 
 std::size_t visible_particles(const SceneBody& body) {
   if (const auto* cloth = std::get_if<ClothBody>(&body)) return cloth->model().particle_count();
-  const SolidBody& solid = std::get<SolidBody>(body);
-  return solid.embedded_surface() ? solid.embedded_surface()->vertex_count() : solid.node_count();
+  return std::get<SolidBody>(body).surface_vertex_count();
 }
 
 }  // namespace
@@ -46,7 +45,7 @@ SceneRunner::SceneRunner(Scene scene, SceneAccess access, SceneReloader reload, 
       haptics_(scene_.haptics),
       time_step_(scene_.world.settings().time_step),
       haptic_structure_(scene_.haptic_structure) {
-  for (BodyId id : scene_.world.body_ids()) owners_.emplace_back(id, access_.owner);
+  own_scene_bodies();
   publish();
   publish_catalog();
   if (!scene_.devices.empty()) {
@@ -193,8 +192,7 @@ void SceneRunner::reset(ClientId by, Completion<SceneStatus> done) {
     step_requests_.clear();
     fresh->world.continue_ids_from(scene.world);
     scene.world = std::move(fresh->world);
-    owners_.clear();
-    for (BodyId id : scene.world.body_ids()) owners_.emplace_back(id, access_.owner);
+    own_scene_bodies();
     timed_forces_.clear();
     resync_ = true;
     publish_bodies();
@@ -365,11 +363,11 @@ std::shared_ptr<const HapticFrame> SceneRunner::haptic_frame() {
   const SteadyClock::time_point last(
       SteadyClock::duration(last_render_.exchange(now.time_since_epoch().count())));
   auto frame = haptic_.load();
-  const auto snapshot = latest();
   if (frame && now - last < kHapticIdle) return frame;
   // the physics thread may have stopped making frames: start from a still copy of the latest
   std::lock_guard lock(haptic_mutex_);
   frame = haptic_.load();
+  const auto snapshot = latest();
   if (!frame || frame->to != snapshot) {
     frame = make_haptic_frame(snapshot, nullptr, nullptr, haptic_structure_, now);
     haptic_.store(frame);
@@ -408,6 +406,11 @@ void SceneRunner::publish() {
   latest_.store(std::move(snapshot));
 }
 
+void SceneRunner::own_scene_bodies() {
+  owners_.clear();
+  for (BodyId id : scene_.world.body_ids()) owners_.emplace_back(id, access_.owner);
+}
+
 void SceneRunner::publish_bodies() {
   // the snapshot first: a client told of a body finds it in the next frame
   publish();
@@ -430,30 +433,26 @@ void SceneRunner::step_once() {
   timed_forces_.apply(world);
   reactions_.apply_and_clear(world);
   const StepReport report = world.step();
-  if (report.flags & kStepRescued) {
-    ++window_rescued_;
-    ++rescued_.steps;
-  }
+  if (report.flags & kStepRescued) ++rescued_.total;
   if (report.flags & kStepUnrecoverable) {
-    ++window_unrecoverable_;
-    ++unrecoverable_.steps;
+    ++unrecoverable_.total;
     unrecoverable_.bodies = report.unrecoverable_bodies;
   }
 }
 
 void SceneRunner::report_health(bool force) {
   const auto now = Clock::now();
-  for (auto [kind, unreported] : {std::pair{SceneEvent::Kind::kUnrecoverableStep, &unrecoverable_},
-                                  std::pair{SceneEvent::Kind::kRescuedStep, &rescued_}}) {
-    if (unreported->steps == 0) continue;
-    if (!force && Seconds(now - unreported->last_event).count() < kEventIntervalSeconds) continue;
+  for (auto [kind, troubled] : {std::pair{SceneEvent::Kind::kUnrecoverableStep, &unrecoverable_},
+                                std::pair{SceneEvent::Kind::kRescuedStep, &rescued_}}) {
+    if (troubled->total == troubled->reported) continue;
+    if (!force && Seconds(now - troubled->last_event).count() < kEventIntervalSeconds) continue;
     SceneEvent e = event(kind, 0);
-    e.count = unreported->steps;
-    e.body_ids = std::move(unreported->bodies);
+    e.count = troubled->total - troubled->reported;
+    e.body_ids = std::move(troubled->bodies);
     members_.broadcast(std::move(e));
-    unreported->steps = 0;
-    unreported->bodies.clear();
-    unreported->last_event = now;
+    troubled->reported = troubled->total;
+    troubled->bodies.clear();
+    troubled->last_event = now;
   }
 }
 
@@ -528,9 +527,8 @@ void SceneRunner::run(std::stop_token stop) {
       std::lock_guard lock(stats_mutex_);
       stats_.steps = world.step_count();
       stats_.sim_time = world.time();
-      stats_.rescued_steps += window_rescued_;
-      stats_.unrecoverable_steps += window_unrecoverable_;
-      window_rescued_ = window_unrecoverable_ = 0;
+      stats_.rescued_steps = rescued_.total;
+      stats_.unrecoverable_steps = unrecoverable_.total;
       stats_.paused = paused_;
       stats_.time_scale = time_scale_;
       const double window = Seconds(after - window_start).count();

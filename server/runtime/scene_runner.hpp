@@ -94,7 +94,6 @@ class SceneRunner {
   const SceneAccess& access() const { return access_; }
   const ProxySettings& haptics() const { return haptics_; }
   Real time_step() const { return time_step_; }
-  const SceneLimits& limits() const { return limits_; }
   SceneMembers& members() { return members_; }
 
   /// The scene's bodies now (never null). A body a request added is in it before the request's
@@ -176,6 +175,8 @@ class SceneRunner {
   void step_once();
   void publish();
   void publish_catalog();
+  /// The scene's own bodies (all that are in it now) belong to its owner.
+  void own_scene_bodies();
   /// A snapshot and a catalog for bodies that came or went.
   void publish_bodies();
   /// Makes the haptic frame for the snapshot just published, if proxies are in use.
@@ -217,13 +218,15 @@ class SceneRunner {
   bool paused_ = false;
   double time_scale_ = 1;
   bool resync_ = true;  ///< the wall clock origin must be set again (start, resume, scale)
-  struct Unreported {
-    std::uint64_t steps = 0;
-    std::vector<BodyId> bodies;  ///< of the last such step (unrecoverable steps only)
+  /// Steps of one kind of trouble (rescued or unrecoverable): how many since the start, how
+  /// many of them events have told, and the bodies of the last one.
+  struct Troubled {
+    std::uint64_t total = 0;
+    std::uint64_t reported = 0;
+    std::vector<BodyId> bodies;  ///< unrecoverable steps only
     std::chrono::steady_clock::time_point last_event{};
   };
-  Unreported unrecoverable_, rescued_;
-  std::uint64_t window_rescued_ = 0, window_unrecoverable_ = 0;
+  Troubled unrecoverable_, rescued_;
 
   TriangleQueryKind haptic_structure_;
   std::atomic<std::shared_ptr<const HapticFrame>> haptic_;
