@@ -49,16 +49,59 @@ bool finite(const TriangleCorners& c) {
   return c.a.allFinite() && c.b.allFinite() && c.c.allFinite();
 }
 
+/// How far a vertex of the body moves between its snapshots (0 when it does not say).
+Real motion_of(const HapticBody& body) {
+  return std::isfinite(body.max_displacement) ? std::max(body.max_displacement, Real{0}) : 0;
+}
+
+/// Triangle `triangle` of `body` at `alpha`, unless it is not there (a bad index, a
+/// non-finite corner).
+std::optional<TriangleCorners> triangle_at(const HapticBody& body, std::uint32_t triangle,
+                                           Real alpha) {
+  if (triangle >= body.triangles.size()) return std::nullopt;
+  const Triangle& t = body.triangles[triangle];
+  const std::size_t vertices = std::min(body.from.size(), body.to.size());
+  if (t[0] >= vertices || t[1] >= vertices || t[2] >= vertices) return std::nullopt;
+  const TriangleCorners c = corners_at(body, t, alpha);
+  if (!finite(c)) return std::nullopt;
+  return c;
+}
+
+/// Whether `then` is `now`'s body as an earlier surface had it: the same id and surface.
+bool same_body(const HapticBody& then, const HapticBody& now) {
+  return then.body_id == now.body_id && then.triangles.data() == now.triangles.data() &&
+         then.triangles.size() == now.triangles.size() && then.from.size() == now.from.size() &&
+         then.to.size() == now.to.size();
+}
+
+/// A bound on how far any vertex of `now` (rendered at `alpha`) is from where it was in `then`
+/// (rendered at `then_alpha`).
+Real travel_between(const HapticBody& then, Real then_alpha, const HapticBody& now, Real alpha) {
+  const Real motion = motion_of(now);
+  if (then.from.data() == now.from.data() && then.to.data() == now.to.data()) {
+    return std::abs(alpha - then_alpha) * motion;  // the same snapshot pair
+  }
+  if (now.chain != 0 && now.chain == then.chain) {
+    // along the chain of pairs between them; the slack covers the sums' rounding
+    const Real along = (now.travelled - (1 - alpha) * motion) -
+                       (then.travelled - (1 - then_alpha) * motion_of(then));
+    const Real travel = std::abs(along) + 1e-12 * (1 + std::abs(now.travelled));
+    if (std::isfinite(travel)) return travel;
+  }
+  // unrelated snapshots (the scene went on while nobody touched it): look at every vertex
+  Real largest_sq = 0;
+  for (std::size_t i = 0; i < now.to.size(); ++i) {
+    const Vec3 d = lerp(now.from[i], now.to[i], alpha) - lerp(then.from[i], then.to[i], then_alpha);
+    if (d.allFinite()) largest_sq = std::max(largest_sq, d.squaredNorm());
+  }
+  return std::sqrt(largest_sq);
+}
+
 Aabb segment_box(const Vec3& p0, const Vec3& p1, Real margin) {
   Aabb box;
   box.grow(p0);
   box.grow(p1);
   return box.inflated(margin);
-}
-
-/// How far a vertex of the body moves between its snapshots (0 when it does not say).
-Real motion_of(const HapticBody& body) {
-  return std::isfinite(body.max_displacement) ? std::max(body.max_displacement, Real{0}) : 0;
 }
 
 Vec3 point_at(const TriangleCorners& c, const Vec3& barycentric) {
@@ -441,14 +484,12 @@ void GodObject::gather(const HapticSurface& surface, const Aabb& region) {
     // in index order whatever the structure, so that every structure feeds the same triangles
     // in the same order and a replay against another structure is bit for bit the same
     std::sort(collected_.begin(), collected_.end());
-    const std::size_t vertices = std::min(body.from.size(), body.to.size());
     for (const std::uint32_t t : collected_) {
       if (t >= body.triangles.size() || stamps[t] == epoch_) continue;  // gathered already
       stamps[t] = epoch_;
-      const Triangle& tri = body.triangles[t];
-      if (tri[0] >= vertices || tri[1] >= vertices || tri[2] >= vertices) continue;
-      const TriangleCorners now = corners_at(body, tri, surface.alpha);
-      if (!finite(now)) continue;  // a corrupt triangle is not there
+      const std::optional<TriangleCorners> corners = triangle_at(body, t, surface.alpha);
+      if (!corners) continue;  // a corrupt triangle is not there
+      const TriangleCorners& now = *corners;
       const Vec3 centre = (now.a + now.b + now.c) / 3;
       Aabb box;
       box.grow(now.a);
@@ -467,23 +508,58 @@ void GodObject::gather(const HapticSurface& surface, const Aabb& region) {
   }
 }
 
-Vec3 GodObject::carry(const HapticSurface& surface, Real previous_alpha, Vec3& before) {
+void GodObject::follow_bodies(const HapticSurface& surface) {
+  then_.assign(surface.bodies.size(), Then{});
+  travel_.assign(surface.bodies.size(), 0);
+  margin_ = 0;
+  if (!previous_) return;
+  const std::vector<HapticBody>& then = previous_->bodies;
+  for (std::uint32_t b = 0; b < surface.bodies.size(); ++b) {
+    const HapticBody& body = surface.bodies[b];
+    // bodies mostly keep their places; else look for it
+    std::optional<std::uint32_t> found;
+    if (b < then.size() && same_body(then[b], body)) found = b;
+    for (std::uint32_t i = 0; !found && i < then.size(); ++i) {
+      if (same_body(then[i], body)) found = i;
+    }
+    if (!found) continue;  // new, or a new surface under its id: it moved onto nothing
+    const HapticBody& was = then[*found];
+    travel_[b] = travel_between(was, previous_->alpha, body, surface.alpha);
+    if (was.from.data() == body.from.data() && was.to.data() == body.to.data()) {
+      then_[b] = {&body, previous_->alpha};  // the same pair
+    } else if (was.to.data() == body.from.data() && previous_->alpha == 1) {
+      then_[b] = {&body, 0};  // the pair before, at its end
+    } else {
+      then_[b] = {&was, previous_->alpha};
+    }
+    margin_ = std::max(margin_, travel_[b]);
+  }
+}
+
+std::optional<TriangleCorners> GodObject::previous_corners(std::uint32_t b,
+                                                           std::uint32_t triangle) const {
+  if (!then_[b].body) return std::nullopt;
+  return triangle_at(*then_[b].body, triangle, then_[b].alpha);
+}
+
+Vec3 GodObject::carry(const HapticSurface& surface, Vec3& before) {
   before = rest_;
   Vec3 start = rest_;
   if (anchor_) {
     if (const std::optional<std::uint32_t> b = find_body(surface, *anchor_)) {
-      const HapticBody& body = surface.bodies[*b];
-      const Triangle& tri = body.triangles[anchor_->triangle];
       const Placement placement{anchor_->barycentric, anchor_->offset};
-      const std::optional<Vec3> was = position_of(corners_at(body, tri, previous_alpha), placement);
-      const std::optional<Vec3> is = position_of(corners_at(body, tri, surface.alpha), placement);
+      const std::optional<TriangleCorners> then = previous_corners(*b, anchor_->triangle);
+      const std::optional<TriangleCorners> now =
+          triangle_at(surface.bodies[*b], anchor_->triangle, surface.alpha);
+      const std::optional<Vec3> was = then ? position_of(*then, placement) : std::nullopt;
+      const std::optional<Vec3> is = now ? position_of(*now, placement) : std::nullopt;
       if (was && is) {
         before = *was;
         start = *is;
       }
     }
   }
-  if (!have_previous_) return start;
+  if (!previous_) return start;
 
   const Vec3 carried = start;
   for (int attempt = 0;; ++attempt) {
@@ -495,15 +571,16 @@ Vec3 GodObject::carry(const HapticSurface& surface, Real previous_alpha, Vec3& b
     std::optional<std::size_t> passed_candidate;
     Real passed_at = 2;
     for (std::size_t i = 0; i < candidate_now_.size(); ++i) {
-      const HapticBody& body = surface.bodies[candidate_body_[i]];
-      if (!candidate_bounds_[i].inflated(motion_of(body)).overlaps(path)) continue;
-      const TriangleCorners was =
-          corners_at(body, body.triangles[candidate_triangle_[i]], previous_alpha);
+      const std::uint32_t b = candidate_body_[i];
+      if (!then_[b].body) continue;  // it came from nowhere: nothing to pass
+      if (!candidate_bounds_[i].inflated(travel_[b]).overlaps(path)) continue;
+      const std::optional<TriangleCorners> was = previous_corners(b, candidate_triangle_[i]);
+      if (!was) continue;
       const std::optional<Real> s =
-          point_passes_moving_triangle(before, start, was, candidate_now_[i]);
+          point_passes_moving_triangle(before, start, *was, candidate_now_[i]);
       if (s && *s < passed_at) {
         passed_at = *s;
-        passed = was;
+        passed = *was;
         passed_candidate = i;
       }
     }
@@ -527,18 +604,19 @@ HapticContact GodObject::update(const HapticSurface& surface, const Vec3& device
     return out;
   }
   const Real radius = std::isfinite(settings_.radius) ? std::max(settings_.radius, Real{0}) : 0;
-  margin_ = 0;  // how far any triangle can move before the next update
-  for (const HapticBody& body : surface.bodies) margin_ = std::max(margin_, motion_of(body));
-  const Real previous_alpha =
-      have_previous_ && surface.step == previous_step_ ? previous_alpha_ : Real{0};
   forget_candidates();
+  follow_bodies(surface);
   const auto gather_box = [&](const Aabb& box) { gather(surface, box); };
-  // one box for what most updates look at: the proxy carried by at most the surface's motion,
-  // its slide toward the device, the surface within its reach
-  gather_box(segment_box(rest_, device, radius + 2 * kSkin + 2 * margin_));
+  // how far the surface may move before the next update, as far as it moved in its last step:
+  // the anchor looks that far
+  Real motion = 0;
+  for (const HapticBody& body : surface.bodies) motion = std::max(motion, motion_of(body));
+  // one box for what most updates look at: the proxy carried by the surface's motion since the
+  // previous update, its slide toward the device, the surface within the anchor's reach
+  gather_box(segment_box(rest_, device, radius + 2 * kSkin + margin_ + motion));
 
   Vec3 before;
-  const Vec3 start = carry(surface, previous_alpha, before);
+  const Vec3 start = carry(surface, before);
 
   const Candidates candidates{candidate_now_,    candidate_normal_, candidate_centre_,
                               candidate_extent_, candidate_bounds_, candidate_triangle_};
@@ -570,7 +648,7 @@ HapticContact GodObject::update(const HapticSurface& surface, const Vec3& device
   }
 
   // the touched point, and the triangle the proxy is anchored to until the next update
-  gather_box(segment_box(rest, rest, radius + 2 * kSkin + margin_));
+  gather_box(segment_box(rest, rest, radius + 2 * kSkin + motion));
   std::optional<Nearest> nearest;
   std::optional<Nearest> anchor;
   for (std::size_t i = 0; i < candidate_now_.size(); ++i) {
@@ -667,9 +745,7 @@ HapticContact GodObject::update(const HapticSurface& surface, const Vec3& device
 
   rest_ = rest;
   proxy_ = proxy;
-  have_previous_ = true;
-  previous_step_ = surface.step;
-  previous_alpha_ = surface.alpha;
+  previous_ = surface;  // its storage too: kept until the next update
   in_contact_ = in_contact;
   slipping_ = slipping;
   previous_offset_ = offset;

@@ -23,8 +23,9 @@
 //     before it touches, and rests a skin of 1 µm outside its radius.
 // Leg 2 is not tested against the motion of leg 1's interval: sliding while the surface turns
 // would cross it in a linear model that the real motion does not follow. The previous rendered
-// state is the same snapshot pair at the previous alpha, or the new pair at alpha 0 when `step`
-// changed (what happened between the pairs is not seen). If leg 1 would pass a triangle the
+// state is the surface the previous update rendered (kept, with its storage, until the next),
+// however many snapshots came between: a proxy updated rarely (a remote client at 20 Hz) is
+// carried through all the motion since, taken as linear. If leg 1 would pass a triangle the
 // proxy keeps instead the placement it had relative to that triangle; only when that fails
 // too, twice (surfaces closing on the proxy from both sides, where no place keeps every side),
 // is the carried leg taken regardless.
@@ -95,9 +96,14 @@ class GodObject {
   void gather(const HapticSurface& surface, const Aabb& region);
   /// Starts an update with no candidates.
   void forget_candidates();
+  /// Matches the bodies of `surface` with those of the previous update's surface and bounds
+  /// how far each vertex moved since (then_, travel_, margin_).
+  void follow_bodies(const HapticSurface& surface);
+  /// A triangle of body `b` of `surface` as the previous update rendered it, if it had the body.
+  std::optional<TriangleCorners> previous_corners(std::uint32_t b, std::uint32_t triangle) const;
   /// Leg 1 (see above): where the proxy is carried to against the current state; `before` is
   /// set to where it was against the previous state.
-  Vec3 carry(const HapticSurface& surface, Real previous_alpha, Vec3& before);
+  Vec3 carry(const HapticSurface& surface, Vec3& before);
   /// The anchor's body index in `surface`, or none when its body or triangle is gone.
   std::optional<std::uint32_t> find_body(const HapticSurface& surface, const Anchor& anchor) const;
 
@@ -105,9 +111,16 @@ class GodObject {
   Vec3 proxy_;  ///< reported centre
   Vec3 rest_;   ///< where the sphere rests: a tiny skin farther out than `proxy_`
   std::optional<Anchor> anchor_;
-  bool have_previous_ = false;
-  std::uint64_t previous_step_ = 0;
-  Real previous_alpha_ = 0;
+  std::optional<HapticSurface> previous_;  ///< what the previous update rendered against
+  /// Per body of the current surface, where the previous update rendered it: a body of
+  /// previous_ at its alpha, or of the current surface when that shows the same state (fewer
+  /// snapshots to read); null when the body is new.
+  struct Then {
+    const HapticBody* body = nullptr;
+    Real alpha = 0;
+  };
+  std::vector<Then> then_;
+  std::vector<Real> travel_;  ///< per body: a bound on any vertex's move since previous_
   bool in_contact_ = false;
   bool slipping_ = false;
   Vec3 force_ = Vec3::Zero();            ///< the last force returned
@@ -118,8 +131,8 @@ class GodObject {
   std::vector<Aabb> gathered_;
   std::vector<std::vector<std::uint32_t>> stamps_;  ///< per body and triangle: epoch gathered
   std::uint32_t epoch_ = 0;                         ///< of the current update
-  Real margin_ = 0;  ///< the largest max_displacement of the surface's bodies
-  std::vector<std::uint32_t> candidate_body_;  ///< index into HapticSurface::bodies
+  Real margin_ = 0;                                 ///< the largest travel_
+  std::vector<std::uint32_t> candidate_body_;       ///< index into HapticSurface::bodies
   std::vector<std::uint32_t> candidate_triangle_;
   std::vector<TriangleCorners> candidate_now_;
   std::vector<Vec3> candidate_normal_;  ///< unit; zero for a triangle without area

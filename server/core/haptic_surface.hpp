@@ -4,6 +4,7 @@
 // haptic interpolation, thesis 1 §7), so a 1 kHz loop sees smooth motion from a slower step.
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -23,6 +24,11 @@ struct HapticBody {
   const TriangleQuery* query = nullptr;
   /// the largest distance a vertex moves from `from` to `to`
   Real max_displacement = 0;
+  /// a bound on how far a vertex has moved from the start of its chain of snapshot pairs (each
+  /// pair's `from` the previous pair's `to`) to `to`: the sum of the pairs' max_displacement.
+  /// Two surfaces' bounds subtract when their bodies have the same nonzero `chain`.
+  Real travelled = 0;
+  std::uint64_t chain = 0;
 };
 
 struct HapticSurface {
@@ -31,6 +37,10 @@ struct HapticSurface {
   std::uint64_t step = 0;
   /// where between the snapshots the surface is rendered: 0 = from, 1 = to
   Real alpha = 1;
+  /// keeps the spans' storage alive while the surface is kept: a proxy keeps the surface it
+  /// rendered against until its next update. Null when the caller keeps the storage valid and
+  /// unchanged that long itself.
+  std::shared_ptr<const void> storage;
 
   /// The body with id `body_id`, or null.
   const HapticBody* find(std::uint32_t body_id) const {

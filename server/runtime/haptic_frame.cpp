@@ -1,6 +1,8 @@
 #include "runtime/haptic_frame.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <utility>
 
 namespace felt {
 
@@ -14,6 +16,7 @@ HapticSurface HapticFrame::surface_at(Real alpha) const {
   HapticSurface surface;
   surface.step = to->step;
   surface.alpha = std::clamp<Real>(alpha, 0, 1);
+  surface.storage = storage;
   surface.bodies.reserve(to->bodies.size());
   for (std::size_t b = 0; b < to->bodies.size(); ++b) {
     const BodySnapshot& newer = to->bodies[b];
@@ -27,6 +30,8 @@ HapticSurface HapticFrame::surface_at(Real alpha) const {
     body.normals_to = newer.normals;
     body.query = queries[b].get();
     body.max_displacement = max_displacement[b];
+    body.travelled = travelled[b];
+    body.chain = chain[b];
   }
   return surface;
 }
@@ -41,6 +46,12 @@ const BodySnapshot* same_body(const SceneSnapshot& in, const BodySnapshot& body,
 
 std::size_t index_in(const SceneSnapshot& snapshot, const BodySnapshot* body) {
   return static_cast<std::size_t>(body - snapshot.bodies.data());
+}
+
+/// A new chain of snapshot pairs, for a body whose motion from the previous frame is unknown.
+std::uint64_t new_chain() {
+  static std::atomic<std::uint64_t> chains{0};
+  return chains.fetch_add(1, std::memory_order_relaxed) + 1;
 }
 
 }  // namespace
@@ -66,8 +77,13 @@ std::shared_ptr<HapticFrame> make_haptic_frame(std::shared_ptr<const SceneSnapsh
   frame->to = std::move(to);
   frame->published = now;
   frame->interval = previous ? now - previous->published : SteadyClock::duration{0};
+  frame->storage = std::make_shared<
+      const std::pair<std::shared_ptr<const SceneSnapshot>, std::shared_ptr<const SceneSnapshot>>>(
+      frame->from, frame->to);
   frame->older.assign(bodies.size(), nullptr);
   frame->max_displacement.assign(bodies.size(), 0);
+  frame->travelled.assign(bodies.size(), 0);
+  frame->chain.assign(bodies.size(), 0);
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const BodySnapshot* before = previous ? same_body(*previous->to, bodies[b], b) : nullptr;
     frame->older[b] = before ? before : &bodies[b];
@@ -82,6 +98,14 @@ std::shared_ptr<HapticFrame> make_haptic_frame(std::shared_ptr<const SceneSnapsh
       largest_sq = std::max(largest_sq, (newer[i] - older[i]).squaredNorm());
     }
     frame->max_displacement[b] = std::sqrt(largest_sq);
+    if (before) {
+      const std::size_t i = index_in(*previous->to, before);
+      frame->travelled[b] = previous->travelled[i] + frame->max_displacement[b];
+      frame->chain[b] = previous->chain[i];
+    } else {
+      frame->travelled[b] = frame->max_displacement[b];
+      frame->chain[b] = new_chain();
+    }
   }
   return frame;
 }

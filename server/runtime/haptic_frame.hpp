@@ -25,7 +25,11 @@ struct HapticFrame {
   /// per body of `to`, bounds over [older, to]; written only while the frame is being made
   std::vector<std::unique_ptr<TriangleQuery>> queries;
   std::vector<Real> max_displacement;  ///< per body, the largest vertex move from older to `to`
-  SteadyClock::time_point published;   ///< when `to` became the latest snapshot
+  std::vector<Real> travelled;         ///< per body: HapticBody::travelled
+  std::vector<std::uint64_t> chain;    ///< per body: HapticBody::chain
+  /// holds `from` and `to` for surfaces kept after the frame is recycled
+  std::shared_ptr<const void> storage;
+  SteadyClock::time_point published;  ///< when `to` became the latest snapshot
   /// wall time from the publication of `from` to that of `to`: the render goes from `from` to
   /// `to` over the same time after `to` is published (Zhuang & Canny: one step behind)
   SteadyClock::duration interval{0};

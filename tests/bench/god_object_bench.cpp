@@ -9,6 +9,7 @@
 //   god_object_bench [--updates N] [--query bvh_aabb_4|...]
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -39,10 +40,17 @@ Real wave(Real x, Real y, Real t) {
 }
 
 struct Cloth {
+  /// One physics snapshot, shared and immutable as the runtime's are: a proxy keeps the one
+  /// it rendered against until its next update.
+  struct Snapshot {
+    std::vector<Vec3> positions, normals;
+  };
+
   std::vector<Triangle> triangles;
-  std::vector<Vec3> from, to, normals_from, normals_to;
+  std::shared_ptr<const Snapshot> older, newer;
   std::unique_ptr<TriangleQuery> query;
   Real max_displacement = 0;
+  Real travelled = 0;
 
   Cloth(TriangleQueryKind kind) {
     for (std::uint32_t j = 0; j + 1 < kSide; ++j) {
@@ -52,40 +60,44 @@ struct Cloth {
         triangles.push_back({v, v + kSide + 1, v + kSide});
       }
     }
-    to = at(0);
-    compute_vertex_normals(to, triangles, normals_to);
-    from = to;
-    normals_from = normals_to;
-    query = make_triangle_query(kind, triangles, to);
+    newer = snapshot(0);
+    older = newer;
+    query = make_triangle_query(kind, triangles, newer->positions);
   }
 
-  static std::vector<Vec3> at(Real t) {
-    std::vector<Vec3> x;
+  std::shared_ptr<const Snapshot> snapshot(Real t) const {
+    auto s = std::make_shared<Snapshot>();
     for (std::uint32_t j = 0; j < kSide; ++j) {
       for (std::uint32_t i = 0; i < kSide; ++i) {
         const Real px = Real(i) / (kSide - 1);
         const Real py = Real(j) / (kSide - 1);
-        x.emplace_back(px, py, wave(px, py, t));
+        s->positions.emplace_back(px, py, wave(px, py, t));
       }
     }
-    return x;
+    compute_vertex_normals(s->positions, triangles, s->normals);
+    return s;
   }
 
   /// The physics thread's part: a new snapshot, its normals and the refit (not timed).
   void advance(Real t) {
-    from.swap(to);
-    normals_from.swap(normals_to);
-    to = at(t);
-    compute_vertex_normals(to, triangles, normals_to);
-    query->refit(from, to);
+    older = std::exchange(newer, snapshot(t));
+    query->refit(older->positions, newer->positions);
     max_displacement = 0;
-    for (std::size_t i = 0; i < to.size(); ++i) {
-      max_displacement = std::max(max_displacement, (to[i] - from[i]).norm());
+    for (std::size_t i = 0; i < newer->positions.size(); ++i) {
+      max_displacement =
+          std::max(max_displacement, (newer->positions[i] - older->positions[i]).norm());
     }
+    travelled += max_displacement;
   }
 
-  HapticBody body() const {
-    return {0, triangles, from, to, normals_from, normals_to, query.get(), max_displacement};
+  HapticSurface surface(std::uint64_t step) const {
+    HapticSurface surface;
+    surface.bodies = {HapticBody{0, triangles, older->positions, newer->positions, older->normals,
+                                 newer->normals, query.get(), max_displacement, travelled, 1}};
+    surface.step = step;
+    surface.storage = std::make_shared<const std::array<std::shared_ptr<const Snapshot>, 2>>(
+        std::array{older, newer});
+    return surface;
   }
 };
 
@@ -125,8 +137,7 @@ Result run(TriangleQueryKind kind, const ProxySettings& settings, int updates) {
     if (u % kUpdatesPerStep == 0) {
       ++step;
       cloth.advance(static_cast<Real>(step) * kUpdatesPerStep * kHapticDt);
-      surface.bodies = {cloth.body()};
-      surface.step = step;
+      surface = cloth.surface(step);
     }
     surface.alpha = static_cast<Real>(u % kUpdatesPerStep + 1) / kUpdatesPerStep;
     // the device lags the cloth by one physics step, as the interpolated surface does

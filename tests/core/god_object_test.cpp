@@ -26,41 +26,65 @@ namespace {
 using test::expect_vec_near;
 
 /// A triangle surface moving linearly from one snapshot to the next, as the physics thread
-/// would publish it: `advance` makes the newer snapshot the older one.
+/// would publish it: `advance` makes the newer snapshot the older one. Snapshots are shared
+/// and immutable, as the runtime's are, so a proxy may keep one past `advance`.
 struct Sheet {
+  struct Snapshot {
+    std::vector<Vec3> positions, normals;
+  };
+
   std::uint32_t id = 0;
   std::vector<Triangle> triangles;
-  std::vector<Vec3> from, to, normals_from, normals_to;
+  std::shared_ptr<const Snapshot> older, newer;
   std::unique_ptr<TriangleQuery> query;
+  Real displacement = 0;  ///< the largest vertex move from older to newer
+  Real travelled = 0;     ///< the sum of the displacements so far
 
   Sheet(std::uint32_t body_id, std::vector<Vec3> positions, std::vector<Triangle> tris)
-      : id(body_id), triangles(std::move(tris)), from(positions), to(std::move(positions)) {
-    compute_vertex_normals(from, triangles, normals_from);
-    normals_to = normals_from;
-    query = make_triangle_query(TriangleQueryKind::kBruteForce, triangles, from);
+      : id(body_id), triangles(std::move(tris)) {
+    newer = snapshot(std::move(positions));
+    older = newer;
+    query = make_triangle_query(TriangleQueryKind::kBruteForce, triangles, newer->positions);
   }
 
+  const std::vector<Vec3>& from() const { return older->positions; }
+  const std::vector<Vec3>& to() const { return newer->positions; }
+
   void advance(std::vector<Vec3> next) {
-    from = std::move(to);
-    normals_from = std::move(normals_to);
-    to = std::move(next);
-    compute_vertex_normals(to, triangles, normals_to);
-    query->refit(from, to);
+    older = newer;
+    newer = snapshot(std::move(next));
+    query->refit(from(), to());
+    displacement = 0;
+    for (std::size_t i = 0; i < to().size(); ++i) {
+      displacement = std::max(displacement, (to()[i] - from()[i]).norm());
+    }
+    travelled += displacement;
   }
 
   HapticBody body() const {
-    Real displacement = 0;
-    for (std::size_t i = 0; i < from.size(); ++i) {
-      displacement = std::max(displacement, (to[i] - from[i]).norm());
-    }
-    return {id, triangles, from, to, normals_from, normals_to, query.get(), displacement};
+    return {id,          triangles,    from(),    to(), older->normals, newer->normals,
+            query.get(), displacement, travelled, 1};
+  }
+
+ private:
+  std::shared_ptr<const Snapshot> snapshot(std::vector<Vec3> positions) const {
+    auto s = std::make_shared<Snapshot>();
+    s->positions = std::move(positions);
+    compute_vertex_normals(s->positions, triangles, s->normals);
+    return s;
   }
 };
 
 HapticSurface surface_of(std::initializer_list<const Sheet*> sheets, std::uint64_t step = 1,
                          Real alpha = 1) {
   HapticSurface surface;
-  for (const Sheet* sheet : sheets) surface.bodies.push_back(sheet->body());
+  auto storage = std::make_shared<std::vector<std::shared_ptr<const Sheet::Snapshot>>>();
+  for (const Sheet* sheet : sheets) {
+    surface.bodies.push_back(sheet->body());
+    storage->push_back(sheet->older);
+    storage->push_back(sheet->newer);
+  }
+  surface.storage = std::move(storage);
   surface.step = step;
   surface.alpha = alpha;
   return surface;
@@ -300,7 +324,7 @@ TEST(GodObjectCorner, TheProxyHoldsTheCornerAndTheForcePointsOut) {
 Real height_at(const Sheet& sheet, Real alpha, Real x, Real y) {
   for (const Triangle& t : sheet.triangles) {
     Vec3 c[3];
-    for (int k = 0; k < 3; ++k) c[k] = (1 - alpha) * sheet.from[t[k]] + alpha * sheet.to[t[k]];
+    for (int k = 0; k < 3; ++k) c[k] = (1 - alpha) * sheet.from()[t[k]] + alpha * sheet.to()[t[k]];
     const Vec2 p(x, y);
     const Vec2 a = c[0].head<2>(), b = c[1].head<2>(), cc = c[2].head<2>();
     const Real area = (b - a).x() * (cc - a).y() - (b - a).y() * (cc - a).x();
@@ -349,7 +373,7 @@ TEST_P(ThinCloth, AClothMovingOntoAStillDeviceCarriesTheProxy) {
   GodObject proxy(plain_settings(r), Vec3(0.05, 0.05, -0.01));
   std::uint64_t step = 1;
   for (int physics = 0; physics < 15; ++physics, ++step) {
-    cloth.advance(shifted(cloth.to, Vec3(0, 0, -0.01) + 0.01 * lateral));
+    cloth.advance(shifted(cloth.to(), Vec3(0, 0, -0.01) + 0.01 * lateral));
     for (int k = 1; k <= 10; ++k) {
       const HapticSurface surface = surface_of({&cloth}, step, 0.1 * k);
       const HapticContact c = proxy.update(surface, device, 1e-3);
@@ -371,7 +395,7 @@ TEST_P(ThinCloth, ADeviceAgainstAnOncomingClothStaysOnItsSide) {
   std::uint64_t step = 1;
   int tick = 0;
   for (int physics = 0; physics < 10; ++physics, ++step) {
-    cloth.advance(shifted(cloth.to, Vec3(0, 0, -0.01)));
+    cloth.advance(shifted(cloth.to(), Vec3(0, 0, -0.01)));
     for (int k = 1; k <= 10; ++k) {
       ++tick;
       const Vec3 device = start + 1e-3 * tick * (Vec3(0, 0, 1) + lateral);
@@ -419,11 +443,39 @@ TEST_P(ThinCloth, AClothFasterThanItsLastStepStillPushes) {
   const Vec3 device(0.05, 0.05, 0);
   GodObject proxy(plain_settings(r), device);
   EXPECT_FALSE(proxy.update(surface_of({&cloth}, 1, 1), device, 1e-3).in_contact);
-  cloth.advance(shifted(cloth.to, Vec3(0, 0, -0.1) + 0.1 * lateral));
+  cloth.advance(shifted(cloth.to(), Vec3(0, 0, -0.1) + 0.1 * lateral));
   for (int k = 1; k <= 10; ++k) {
     const HapticContact c = proxy.update(surface_of({&cloth}, 2, 0.1 * k), device, 1e-3);
     const Real below = height_at(cloth, 0.1 * k, c.proxy.x(), c.proxy.y()) - c.proxy.z();
     ASSERT_GE(below, r - 1e-9) << "tick " << k;
+  }
+}
+
+// A remote client that updates its proxy at 20 Hz while the cloth, stepped at 100 Hz, comes
+// down 1 cm per step through its still device: several snapshots go by between two updates,
+// and the cloth is on the device's other side at the next. The proxy is tested against all the
+// motion since its previous update and is carried down with the cloth.
+TEST_P(ThinCloth, AProxyUpdatedRarelyIsCarriedThroughEverySnapshotBetweenItsUpdates) {
+  const auto [r, lateral] = GetParam();
+  const Grid g = grid(21, 1, r + 0.025);
+  Sheet cloth(0, g.positions, g.triangles);
+  const Vec3 device(0.05, 0.05, 0);
+  GodObject proxy(plain_settings(r), device);
+  EXPECT_FALSE(proxy.update(surface_of({&cloth}, 1, 1), device, 1e-3).in_contact);
+  std::uint64_t step = 1;
+  for (int update = 1; update <= 3; ++update) {
+    for (int physics = 0; physics < 5; ++physics) {
+      cloth.advance(shifted(cloth.to(), Vec3(0, 0, -0.01) + 0.01 * lateral));
+      ++step;
+    }
+    const Real alpha = update == 2 ? 0.5 : 1;  // anywhere in the newest pair
+    const HapticContact c = proxy.update(surface_of({&cloth}, step, alpha), device, 0.05);
+    const Real below = height_at(cloth, alpha, c.proxy.x(), c.proxy.y()) - c.proxy.z();
+    ASSERT_GE(below, r - 1e-9) << "update " << update;
+    if (update > 1) {  // the cloth has passed the device: it pushes the device down
+      EXPECT_TRUE(c.in_contact) << "update " << update;
+      EXPECT_LT(c.force.z(), 0) << "update " << update;
+    }
   }
 }
 
@@ -451,8 +503,8 @@ TEST(GodObjectFold, TheProxyStaysAboveTheUpperSheet) {
     std::uint64_t step = 2;
     const Vec3 device = proxy.proxy() + Vec3(0, 0, -0.02);
     for (int physics = 0; physics < 6; ++physics, ++step) {
-      a.advance(shifted(a.to, Vec3(0, 0, 0.005)));
-      b.advance(shifted(b.to, Vec3(0, 0, 0.005)));
+      a.advance(shifted(a.to(), Vec3(0, 0, 0.005)));
+      b.advance(shifted(b.to(), Vec3(0, 0, 0.005)));
       for (int k = 1; k <= 10; ++k) {
         const HapticContact c = proxy.update(surface_of({&a, &b}, step, 0.1 * k), device, 1e-3);
         ASSERT_GE(c.proxy.z() - height_at(a, 0.1 * k, c.proxy.x(), c.proxy.y()), r - 1e-9)

@@ -1,0 +1,129 @@
+// The haptic frames the physics thread publishes, as a proxy that updates rarely sees them:
+// the bound on the motion between any two frames of a chain, the snapshots a kept surface
+// holds on to, and a cloth that passes a still device between two of the proxy's updates.
+
+#include <chrono>
+#include <memory>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/god_object.hpp"
+#include "core/surface_normals.hpp"
+#include "runtime/haptic_frame.hpp"
+
+namespace felt {
+namespace {
+
+constexpr std::uint32_t kSide = 11;  // a 1 m square cloth, 10 × 10 cells
+
+std::shared_ptr<const std::vector<Triangle>> square_cloth() {
+  auto triangles = std::make_shared<std::vector<Triangle>>();
+  for (std::uint32_t j = 0; j + 1 < kSide; ++j) {
+    for (std::uint32_t i = 0; i + 1 < kSide; ++i) {
+      const std::uint32_t v = j * kSide + i;
+      triangles->push_back({v, v + 1, v + kSide + 1});
+      triangles->push_back({v, v + kSide + 1, v + kSide});
+    }
+  }
+  return triangles;
+}
+
+/// A snapshot of one body: the cloth flat at height z, its vertex i raised by `bump` (m).
+std::shared_ptr<const SceneSnapshot> snapshot_at(
+    std::uint64_t step, Real z, const std::shared_ptr<const std::vector<Triangle>>& surface,
+    Real bump = 0) {
+  auto snapshot = std::make_shared<SceneSnapshot>();
+  snapshot->step = step;
+  BodySnapshot& body = snapshot->bodies.emplace_back();
+  body.body_id = 7;
+  body.surface = surface;
+  for (std::uint32_t j = 0; j < kSide; ++j) {
+    for (std::uint32_t i = 0; i < kSide; ++i) {
+      body.positions.emplace_back(Real(i) / (kSide - 1) - 0.5, Real(j) / (kSide - 1) - 0.5, z);
+    }
+  }
+  body.positions[0].z() += bump;
+  compute_vertex_normals(body.positions, body.triangles(), body.normals);
+  return snapshot;
+}
+
+/// Frames published one after another, two taking turns as the batch runner's do (the older
+/// is refitted into the newer, so a frame a reader let go of is reused at once).
+struct Publisher {
+  std::shared_ptr<HapticFrame> frame, spare;
+  SteadyClock::time_point now = SteadyClock::now();
+
+  const HapticFrame& publish(std::shared_ptr<const SceneSnapshot> snapshot) {
+    now += std::chrono::milliseconds(10);
+    auto next = make_haptic_frame(std::move(snapshot), frame.get(), std::move(spare),
+                                  TriangleQueryKind::kBvhAabb4, now);
+    spare = std::exchange(frame, std::move(next));
+    return *frame;
+  }
+};
+
+TEST(HapticFrame, AChainOfFramesBoundsTheMotionBetweenAnyTwoOfThem) {
+  const auto surface = square_cloth();
+  Publisher publisher;
+  const HapticFrame& first = publisher.publish(snapshot_at(1, 0, surface));
+  EXPECT_EQ(first.travelled[0], 0);
+  const std::uint64_t chain = first.chain[0];
+  EXPECT_NE(chain, 0u);
+  // one vertex goes up 3 cm while the whole cloth goes down 1 cm a step
+  Real expected = 0;
+  for (int step = 2; step <= 6; ++step) {
+    const Real bump = step % 2 == 0 ? 0.03 : 0;
+    const HapticFrame& frame =
+        publisher.publish(snapshot_at(step, -0.01 * (step - 1), surface, bump));
+    const Real moved = step % 2 == 0 ? 0.02 : 0.04;  // the bump's vertex moves farthest
+    expected += moved;
+    EXPECT_NEAR(frame.max_displacement[0], moved, 1e-12) << "step " << step;
+    EXPECT_NEAR(frame.travelled[0], expected, 1e-12) << "step " << step;
+    EXPECT_EQ(frame.chain[0], chain) << "step " << step;
+  }
+  // a new surface under the same id (a reset scene) starts a new chain
+  const HapticFrame& reset = publisher.publish(snapshot_at(7, 0, square_cloth()));
+  EXPECT_NE(reset.chain[0], chain);
+  EXPECT_EQ(reset.travelled[0], 0);
+}
+
+TEST(HapticFrame, AKeptSurfaceHoldsItsSnapshotsAfterTheFrameIsReused) {
+  const auto surface = square_cloth();
+  Publisher publisher;
+  publisher.publish(snapshot_at(1, 0, surface));
+  auto second = snapshot_at(2, -0.01, surface);
+  const std::weak_ptr<const SceneSnapshot> watched = second;
+  const HapticSurface kept = publisher.publish(std::move(second)).surface_at(0.5);
+  for (int step = 3; step <= 6; ++step) publisher.publish(snapshot_at(step, -0.01 * step, surface));
+  EXPECT_FALSE(watched.expired()) << "a kept surface's vertices were freed under it";
+  EXPECT_EQ(kept.bodies[0].to[0].z(), -0.01);
+}
+
+// The cloth comes down 1 cm per frame from 2.5 cm above a still device; the proxy is updated
+// at the first frame and then only every fifth: it is carried down with the cloth all the same.
+TEST(HapticFrame, AProxyUpdatedEveryFifthFrameIsCarriedByACrossingCloth) {
+  const auto surface = square_cloth();
+  Publisher publisher;
+  const Vec3 device(0.03, 0.02, 0);
+  ProxySettings settings;
+  settings.radius = 0.01;
+  settings.max_force_change = 0;
+  GodObject proxy(settings, device);
+  const Real start = 0.025 + settings.radius;
+  EXPECT_FALSE(
+      proxy.update(publisher.publish(snapshot_at(1, start, surface)).surface_at(1), device, 1e-3)
+          .in_contact);
+  for (int step = 2; step <= 16; ++step) {
+    const Real z = start - 0.01 * (step - 1);
+    const HapticFrame& frame = publisher.publish(snapshot_at(step, z, surface));
+    if (step % 5 != 1) continue;
+    const HapticContact c = proxy.update(frame.surface_at(1), device, 0.05);
+    EXPECT_LE(c.proxy.z(), z - settings.radius + 1e-9) << "step " << step;
+    EXPECT_TRUE(c.in_contact) << "step " << step;
+    EXPECT_LT(c.force.z(), 0) << "step " << step;
+  }
+}
+
+}  // namespace
+}  // namespace felt
