@@ -14,6 +14,7 @@
 
 #include "net/server.hpp"
 #include "runtime/batch_run.hpp"
+#include "runtime/realtime_thread.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/scene_overrides.hpp"
 #include "wire/host_port.hpp"
@@ -29,6 +30,7 @@ struct ServeOptions {
   std::vector<std::string> scenes;
   bool status = false;
   unsigned io_threads = 2;
+  int realtime_priority = 0;  ///< SCHED_FIFO priority of the network threads; 0: normal policy
   felt::net::ServerOptions limits;
 };
 
@@ -147,9 +149,27 @@ int serve(const ServeOptions& options) {
     drain(std::chrono::steady_clock::now() + std::chrono::seconds(2));
   });
   // more than one thread runs the network, so that a client's haptic update is answered
-  // while another thread builds a frame for someone else
+  // while another thread builds a frame for someone else; under a real-time policy they answer
+  // as soon as an update arrives instead of waiting behind the physics threads for a core
+  bool realtime = false;
+  if (options.realtime_priority > 0) {
+    const auto made = felt::make_this_thread_realtime(options.realtime_priority);
+    realtime = made.has_value();
+    if (realtime) {
+      std::printf("network threads: SCHED_FIFO priority %d\n", options.realtime_priority);
+    } else {
+      std::fprintf(stderr, "feltd: --realtime: %s; the network keeps the normal policy\n",
+                   made.error().c_str());
+    }
+    std::fflush(stdout);
+  }
   std::vector<std::jthread> network;
-  for (unsigned t = 1; t < options.io_threads; ++t) network.emplace_back([&io] { io.run(); });
+  for (unsigned t = 1; t < options.io_threads; ++t) {
+    network.emplace_back([&io, realtime, priority = options.realtime_priority] {
+      if (realtime) (void)felt::make_this_thread_realtime(priority);  // allowed for the first
+      io.run();
+    });
+  }
   io.run();
   network.clear();
   // an orderly end: the scenes stop (cancelling what they had queued), the loader finishes,
@@ -340,6 +360,12 @@ int main(int argc, char** argv) {
       ->add_option("--io-threads", serve_options.io_threads,
                    "Threads that run the network (each client's requests stay in order)")
       ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  serve_cmd
+      ->add_option("--realtime", serve_options.realtime_priority,
+                   "Run the network threads under SCHED_FIFO at this priority (1-99; 0: off) "
+                   "so that haptic updates are answered at once on a busy machine")
+      ->check(CLI::Range(0, felt::kMaxRealtimePriority))
       ->capture_default_str();
   serve_cmd->add_option("--token", limits.token,
                         "Shared secret every Hello must carry (default: $FELT_TOKEN)");

@@ -21,6 +21,7 @@
 #include "runtime/haptic_frame.hpp"
 #include "runtime/haptic_proxy.hpp"
 #include "runtime/haptic_servo.hpp"
+#include "runtime/published.hpp"
 #include "runtime/reaction_accumulator.hpp"
 #include "runtime/runner_error.hpp"
 #include "runtime/scene_members.hpp"
@@ -204,9 +205,9 @@ class SceneRunner {
   CommandQueue commands_;
   ReactionAccumulator reactions_;
   SceneMembers members_;
-  std::atomic<std::shared_ptr<const SceneSnapshot>> latest_;
+  Published<SceneSnapshot> latest_;
   std::uint64_t published_ = 0;  ///< snapshots published: the next one's version
-  std::atomic<std::shared_ptr<const BodyCatalog>> catalog_;
+  Published<BodyCatalog> catalog_;
   /// owner of each body, by id; the physics thread's, published through catalog_
   std::vector<std::pair<BodyId, ClientId>> owners_;
 
@@ -229,7 +230,7 @@ class SceneRunner {
   Troubled unrecoverable_, rescued_;
 
   TriangleQueryKind haptic_structure_;
-  std::atomic<std::shared_ptr<const HapticFrame>> haptic_;
+  Published<HapticFrame> haptic_;
   /// frames the physics thread made; one nobody else holds any more is refitted, not copied
   std::vector<std::shared_ptr<HapticFrame>> haptic_pool_;
   std::mutex haptic_mutex_;                       ///< held while a haptic frame is made
