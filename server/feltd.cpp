@@ -375,6 +375,11 @@ int main(int argc, char** argv) {
   serve_cmd->add_option("--max-scenes", limits.max_scenes, "Scenes running at once")
       ->check(CLI::Range(1, 10'000))
       ->capture_default_str();
+  serve_cmd
+      ->add_option("--max-kept-scenes", limits.max_kept_scenes_per_client,
+                   "Scenes one client loads with keep (they outlive it) that run at once")
+      ->check(CLI::Range(0, 10'000))
+      ->capture_default_str();
   serve_cmd->add_option("--max-bodies", limits.max_bodies_per_scene, "Bodies per scene")
       ->check(CLI::Range(1, 65'000))
       ->capture_default_str();

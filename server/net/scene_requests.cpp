@@ -16,21 +16,30 @@ struct ReadError {
 };
 using DocumentSource = std::function<std::expected<json, ReadError>()>;
 
-std::string too_many_scenes(const ServerContext& context) {
-  return "the server already runs " + std::to_string(context.options.max_scenes) + " scenes";
+/// Why the server cannot start another scene for `client`, if it cannot.
+std::optional<std::string> no_room(const ServerContext& context, ClientId client, bool keep) {
+  if (context.scenes.size() >= context.options.max_scenes) {
+    return "the server already runs " + std::to_string(context.options.max_scenes) + " scenes";
+  }
+  if (keep && context.scenes.kept_by(client) >= context.options.max_kept_scenes_per_client) {
+    return "this client already keeps " +
+           std::to_string(context.options.max_kept_scenes_per_client) +
+           " scenes running; destroy one first";
+  }
+  return std::nullopt;
 }
 
 /// Reads and builds the scene `read` gives on the loader thread, starts it and joins the
 /// session to it; the reply is SceneLoaded or the error.
 void start_scene(Session& session, std::uint64_t id, DocumentSource read, bool shared, bool keep) {
   ServerContext& context = session.context();
-  if (context.scenes.size() >= context.options.max_scenes) {
-    session.send_error(id, v1::ERROR_CODE_LIMIT_EXCEEDED, too_many_scenes(context));
+  const ClientId client = session.client_id();
+  if (const auto full = no_room(context, client, keep)) {
+    session.send_error(id, v1::ERROR_CODE_LIMIT_EXCEEDED, *full);
     return;
   }
   auto pending = defer_or_refuse(session, id);
   if (!pending) return;
-  const ClientId client = session.client_id();
   std::weak_ptr<Session> weak = session.weak_from_this();
   boost::asio::post(context.loader, [&context, pending, weak, client, read = std::move(read),
                                      shared, keep] {
@@ -54,8 +63,8 @@ void start_scene(Session& session, std::uint64_t id, DocumentSource read, bool s
                         std::to_string(context.options.max_bodies_per_scene));
       return;
     }
-    if (context.scenes.size() >= context.options.max_scenes) {
-      pending->fail(v1::ERROR_CODE_LIMIT_EXCEEDED, too_many_scenes(context));
+    if (const auto full = no_room(context, client, keep)) {  // others may have loaded since
+      pending->fail(v1::ERROR_CODE_LIMIT_EXCEEDED, *full);
       return;
     }
     auto runner = std::make_shared<SceneRunner>(
@@ -63,7 +72,8 @@ void start_scene(Session& session, std::uint64_t id, DocumentSource read, bool s
         [document = std::move(*document), options] { return load_scene(document, options); },
         SceneLimits{context.options.max_bodies_per_scene, context.options.max_particles_per_scene});
     runner->start();
-    const SceneId scene_id = context.scenes.add(runner);
+    // the loading client is in it from the start, so that it is nobody else's meanwhile
+    const SceneId scene_id = context.scenes.add(runner, SceneMembers::Member{client, {}, {}});
     auto session = weak.lock();
     if (!session) {
       context.scenes.leave(scene_id, client);  // nobody is in it: it goes again

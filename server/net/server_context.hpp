@@ -23,6 +23,9 @@ struct ServerOptions {
   double max_frame_rate_hz = 240;
   std::size_t max_proxies_per_session = 16;
   std::size_t max_scenes = 32;  ///< scenes loaded at once, the server's own included
+  /// scenes one client loaded with `keep` that run at once: kept scenes outlive their client, so
+  /// without it one client could fill max_scenes for everyone
+  std::size_t max_kept_scenes_per_client = 4;
   std::size_t max_clients = 64;
   std::size_t max_requests_in_flight = 16;  ///< per client: loads, steps, saves not yet answered
   std::size_t max_bodies_per_scene = 256;

@@ -41,6 +41,7 @@ void fill_limits(const ServerOptions& options, v1::Limits& out) {
   out.set_max_particles_per_scene(options.max_particles_per_scene);
   out.set_max_scenes(static_cast<std::uint32_t>(options.max_scenes));
   out.set_max_clients(static_cast<std::uint32_t>(options.max_clients));
+  out.set_max_kept_scenes(static_cast<std::uint32_t>(options.max_kept_scenes_per_client));
 }
 
 }  // namespace

@@ -6,7 +6,13 @@ namespace felt {
 
 void SceneMembers::join(Member member) {
   std::lock_guard lock(mutex_);
-  members_.push_back(std::move(member));
+  const auto same = std::find_if(members_.begin(), members_.end(),
+                                 [&](const Member& m) { return m.client == member.client; });
+  if (same != members_.end()) {
+    *same = std::move(member);  // a client is in a scene once
+  } else {
+    members_.push_back(std::move(member));
+  }
 }
 
 void SceneMembers::leave(ClientId client) {

@@ -49,8 +49,10 @@ SceneRegistry::Slot* SceneRegistry::slot(SceneId id) {
   return slots_[index].runner ? &slots_[index] : nullptr;
 }
 
-SceneId SceneRegistry::add(std::shared_ptr<SceneRunner> runner) {
+SceneId SceneRegistry::add(std::shared_ptr<SceneRunner> runner,
+                           std::optional<SceneMembers::Member> first) {
   std::lock_guard lock(mutex_);
+  if (first) runner->members().join(std::move(*first));
   auto free = std::find_if(slots_.begin(), slots_.end(), [](const Slot& s) { return !s.runner; });
   if (free == slots_.end()) free = slots_.insert(slots_.end(), Slot{});
   // generations start at 1 so that no id is 0
@@ -111,6 +113,13 @@ std::size_t SceneRegistry::size() const {
   std::lock_guard lock(mutex_);
   return static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(),
                                                 [](const Slot& s) { return s.runner != nullptr; }));
+}
+
+std::size_t SceneRegistry::kept_by(ClientId owner) const {
+  std::lock_guard lock(mutex_);
+  return static_cast<std::size_t>(std::count_if(slots_.begin(), slots_.end(), [&](const Slot& s) {
+    return s.runner && s.runner->access().persistent && s.runner->access().owner == owner;
+  }));
 }
 
 std::vector<std::pair<SceneId, std::shared_ptr<SceneRunner>>> SceneRegistry::list() const {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -24,8 +25,11 @@ class SceneRegistry {
   SceneRegistry(const SceneRegistry&) = delete;
   SceneRegistry& operator=(const SceneRegistry&) = delete;
 
-  /// Takes ownership of a runner and returns its id.
-  SceneId add(std::shared_ptr<SceneRunner> runner);
+  /// Takes ownership of a runner and returns its id. `first`, when given, is a member from the
+  /// start (the client that loaded it, until it joins for real): under the same lock, so the
+  /// scene is never without its owner, whom another client could then take it from.
+  SceneId add(std::shared_ptr<SceneRunner> runner,
+              std::optional<SceneMembers::Member> first = std::nullopt);
   /// The runner with that id, or nullptr for an unknown or stale id.
   std::shared_ptr<SceneRunner> find(SceneId id) const;
   /// Adds `member` to scene `id` and returns it (nullptr for an unknown id), under the same
@@ -39,6 +43,8 @@ class SceneRegistry {
   /// Stops every scene's physics thread, the removed ones' too (shutdown).
   void stop_all();
   std::size_t size() const;
+  /// The live persistent (`keep`) scenes `owner` loaded.
+  std::size_t kept_by(ClientId owner) const;
   /// Every live scene, in slot order.
   std::vector<std::pair<SceneId, std::shared_ptr<SceneRunner>>> list() const;
 

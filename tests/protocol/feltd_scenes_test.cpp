@@ -225,6 +225,37 @@ TEST_F(FeltdTest, TheServersOwnScenesCannotBeDestroyedButKeptOnesOutliveTheirCli
   expect_error([&] { later->join_scene(gone); }, v1::ERROR_CODE_UNKNOWN_ID);
 }
 
+class FeltdKeptScenesTest : public FeltdTest {
+ protected:
+  std::vector<std::string> extra_args() const override { return {"--max-kept-scenes", "2"}; }
+};
+
+// Kept scenes outlive their client: one client may keep only so many, and others still load.
+TEST_F(FeltdKeptScenesTest, OneClientKeepsAtMostTheLimitAndOthersStillLoad) {
+  auto client = std::make_unique<Client>();
+  connect(*client);
+  EXPECT_EQ(client->hello("hoarder").limits().max_kept_scenes(), 2u);
+  v1::ClientMessage load;
+  load.mutable_load_scene()->set_name("default");
+  load.mutable_load_scene()->set_keep(true);
+  const std::uint64_t first = client->request(load).scene_loaded().scene_id();
+  client->request(load);
+  try {
+    client->request(load);
+    ADD_FAILURE() << "a third kept scene was loaded";
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), v1::ERROR_CODE_LIMIT_EXCEEDED);
+    EXPECT_NE(std::string(e.what()).find("keeps 2 scenes"), std::string::npos) << e.what();
+  }
+  // scenes that go with their client are not limited by it, and another client keeps its own
+  EXPECT_NE(client->load_scene_by_name("default").scene_id(), 0u);
+  auto other = greeted("other");
+  EXPECT_NE(other->request(load).scene_loaded().scene_id(), 0u);
+  // destroying one makes room again
+  EXPECT_EQ(client->destroy_scene(first).scene_id(), first);
+  EXPECT_NE(client->request(load).scene_loaded().scene_id(), 0u);
+}
+
 TEST_F(FeltdTest, LeavingASceneEndsItsFramesAndProxies) {
   auto client = greeted("leaver");
   const std::uint64_t scene = client->stats().scene().scene_id();

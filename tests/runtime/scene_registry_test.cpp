@@ -29,5 +29,39 @@ TEST(SceneRegistry, StaleIdsAreNeverReused) {
   EXPECT_EQ(registry.find(0xdeadbeef00000007ull), nullptr);
 }
 
+// A scene a client loads is its from the moment it is added: another client finds it, joins
+// it, and may not control it, even before the loading client's session has joined.
+TEST(SceneRegistry, ALoadedSceneHasItsOwnerAsAMemberFromTheStart) {
+  SceneRegistry registry;
+  constexpr ClientId kLoader = 7, kOther = 8;
+  const SceneId id = registry.add(
+      std::make_shared<SceneRunner>(Scene("mine", World()), SceneAccess{kLoader, false, false}),
+      SceneMembers::Member{kLoader, {}, {}});
+  const auto scene = registry.join(id, {kOther, "other", {}});
+  ASSERT_NE(scene, nullptr);
+  EXPECT_FALSE(scene->may_control(kOther));
+  // the loader's session joining for real takes the place it had, it is not in twice
+  registry.join(id, {kLoader, "loader", {}});
+  EXPECT_EQ(scene->members().count(), 2u);
+  registry.leave(id, kLoader);
+  EXPECT_TRUE(scene->may_control(kOther));  // its owner is gone: anyone's
+}
+
+TEST(SceneRegistry, KeptScenesAreCountedPerOwner) {
+  SceneRegistry registry;
+  const auto runner = [](ClientId owner, bool keep) {
+    return std::make_shared<SceneRunner>(Scene("s", World()), SceneAccess{owner, false, keep});
+  };
+  const SceneId kept = registry.add(runner(1, true));
+  registry.add(runner(1, true));
+  registry.add(runner(1, false));
+  registry.add(runner(2, true));
+  EXPECT_EQ(registry.kept_by(1), 2u);
+  EXPECT_EQ(registry.kept_by(2), 1u);
+  EXPECT_EQ(registry.kept_by(3), 0u);
+  registry.remove(kept);
+  EXPECT_EQ(registry.kept_by(1), 1u);
+}
+
 }  // namespace
 }  // namespace felt
