@@ -134,6 +134,15 @@ void GeneralizedMassSpring::add_forces(std::span<const Vec3> x, std::span<const 
   }
 }
 
+void GeneralizedMassSpring::linear_pairs(std::vector<LinearPair>& pairs) const {
+  pairs.clear();
+  for (const Spring& s : springs_) {
+    const Real inv_sq = 1 / (s.rest_length * s.rest_length);
+    pairs.push_back({s.nodes[0], s.nodes[1], material_.distance_stiffness * inv_sq,
+                     material_.damping * inv_sq});
+  }
+}
+
 Real GeneralizedMassSpring::energy(std::span<const Vec3> x) const {
   FELT_CHECK(x.size() == node_count_);
   Real e = 0;

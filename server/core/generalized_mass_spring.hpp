@@ -15,6 +15,7 @@
 #include <span>
 #include <vector>
 
+#include "core/linear_pair.hpp"
 #include "core/node_mask.hpp"
 #include "core/solid_body.hpp"
 #include "core/tet_mesh.hpp"
@@ -32,6 +33,10 @@ class GeneralizedMassSpring {
   /// then right (bit for bit) at the selected nodes only.
   void add_forces(std::span<const Vec3> x, std::span<const Vec3> v, std::span<Vec3> f,
                   NodeMask mask = {}) const;
+  /// The edges' distance forces near rest as linear pairs: −k_D C ∂C/∂x with C = |x_ij|/L − 1
+  /// is −(k_D/L²)(|x_ij| − L) x̂_ij, whose linear part −(k_D/L²) x_ij an IMEX scheme takes
+  /// implicitly (the rest, and the volume and area terms, stay explicit); damping d_C/L².
+  void linear_pairs(std::vector<LinearPair>& pairs) const;
   /// The potential of all constraints at positions x.
   Real energy(std::span<const Vec3> x) const;
 

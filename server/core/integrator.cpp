@@ -15,6 +15,7 @@ namespace {
 struct Entry {
   std::string_view name;
   std::unique_ptr<Integrator> (*make)();
+  IntegratorNeeds needs = IntegratorNeeds::kForces;
 };
 
 template <typename T>
@@ -31,10 +32,10 @@ constexpr std::array kIntegrators{
     Entry{"verlet", &make_one<PositionVerlet>},
     Entry{"velocity_verlet", &make_one<VelocityVerlet>},
     Entry{"leapfrog", &make_one<Leapfrog>},
-    Entry{"implicit_euler", &make_one<ImplicitEuler>},
-    Entry{"imex", &make_one<ImexIntegrator>},
-    Entry{"desbrun", &make_one<DesbrunIntegrator>},
-    Entry{"kang", &make_one<KangIntegrator>},
+    Entry{"implicit_euler", &make_one<ImplicitEuler>, IntegratorNeeds::kJacobian},
+    Entry{"imex", &make_one<ImexIntegrator>, IntegratorNeeds::kLinearPairs},
+    Entry{"desbrun", &make_one<DesbrunIntegrator>, IntegratorNeeds::kLinearPairs},
+    Entry{"kang", &make_one<KangIntegrator>, IntegratorNeeds::kLinearPairs},
 };
 
 }  // namespace
@@ -50,6 +51,13 @@ std::vector<std::string_view> integrator_names() {
   std::vector<std::string_view> names;
   for (const Entry& entry : kIntegrators) names.push_back(entry.name);
   return names;
+}
+
+std::optional<IntegratorNeeds> integrator_needs(std::string_view name) {
+  for (const Entry& entry : kIntegrators) {
+    if (entry.name == name) return entry.needs;
+  }
+  return std::nullopt;
 }
 
 }  // namespace felt

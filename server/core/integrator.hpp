@@ -1,6 +1,8 @@
 #pragma once
 
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -31,5 +33,15 @@ std::unique_ptr<Integrator> make_integrator(std::string_view name);
 
 /// Every name make_integrator accepts.
 std::vector<std::string_view> integrator_names();
+
+/// What an integrator asks of a DynamicSystem beyond its masses and forces.
+enum class IntegratorNeeds : std::uint8_t {
+  kForces,       ///< nothing more: the explicit and symplectic schemes
+  kJacobian,     ///< compute_jacobian (implicit Euler)
+  kLinearPairs,  ///< linear_force_pairs for its implicit part (IMEX, Desbrun, Kang)
+};
+
+/// What the integrator called `name` needs, or nothing for an unknown name.
+std::optional<IntegratorNeeds> integrator_needs(std::string_view name);
 
 }  // namespace felt

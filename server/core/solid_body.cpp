@@ -54,6 +54,61 @@ struct SolidBody::ModelState {
   std::vector<Vec3> force;  ///< scratch for advance()
 };
 
+class SolidBody::Dynamics final : public DynamicSystem {
+ public:
+  Dynamics(const SolidBody& body, const Vec3& gravity) : body_(body), gravity_(gravity) {}
+
+  std::span<const Real> inv_mass() const override { return body_.inv_mass_; }
+
+  void compute_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real /*t*/,
+                      std::span<Vec3> f) const override {
+    std::ranges::fill(f, Vec3::Zero());
+    std::visit(
+        [&](const auto& model) {
+          if constexpr (!std::is_same_v<std::decay_t<decltype(model)>, ShapeMatching>) {
+            model.add_forces(x, v, f);
+          }
+        },
+        body_.model_state_->model);
+    const Vec3 weight = body_.material_.node_mass * gravity_;
+    for (std::size_t n = 0; n < f.size(); ++n) f[n] += weight + body_.external_force_[n];
+  }
+
+  bool linear_force_pairs(std::vector<LinearPair>& pairs) const override {
+    pairs.clear();
+    const auto* springs = std::get_if<GeneralizedMassSpring>(&body_.model_state_->model);
+    if (springs) springs->linear_pairs(pairs);
+    return !pairs.empty();
+  }
+
+ private:
+  const SolidBody& body_;
+  Vec3 gravity_;
+};
+
+std::optional<std::string> solid_integrator_refusal(SolidModel model, std::string_view name) {
+  if (model == SolidModel::kShapeMatching) {
+    return "shape matching moves its nodes by its own update and takes no integrator";
+  }
+  if (name == kTimeCorrectedVerlet) return std::nullopt;
+  const std::optional<IntegratorNeeds> needs = integrator_needs(name);
+  if (!needs) {
+    std::string known(kTimeCorrectedVerlet);
+    for (std::string_view n : integrator_names()) known += ", " + std::string(n);
+    return "unknown integrator \"" + std::string(name) + "\" (known: " + known + ")";
+  }
+  if (*needs == IntegratorNeeds::kJacobian) {
+    return std::string(name) +
+           " needs a force Jacobian, which the solid models do not give (imex, desbrun and kang "
+           "take a mass-spring solid's edges implicitly)";
+  }
+  if (*needs == IntegratorNeeds::kLinearPairs && model != SolidModel::kMassSpring) {
+    return std::string(name) +
+           " takes springs implicitly and corotated_fem has none; the explicit integrators apply";
+  }
+  return std::nullopt;
+}
+
 SolidBody::SolidBody(std::string name, TetMesh mesh, SolidMaterial material)
     : name_(std::move(name)),
       rest_(std::move(mesh)),
@@ -77,6 +132,9 @@ void SolidBody::set_material(const SolidMaterial& material) {
   // a new model starts from the rest shape again (a shape-matching body forgets its plastic flow)
   model_state_ = std::make_unique<ModelState>(
       ModelState{make_model(rest_, topology_, material_), std::vector<Vec3>(x_.size())});
+  if (integrator_ && solid_integrator_refusal(material_.model, integrator_->name())) {
+    integrator_.reset();  // it does not apply to the new model
+  }
   const bool first = inv_mass_.empty();
   inv_mass_.resize(x_.size());
   for (Real& inv : inv_mass_) {
@@ -98,6 +156,22 @@ void SolidBody::pin(std::uint32_t n) {
 void SolidBody::unpin(std::uint32_t n) {
   FELT_CHECK(n < x_.size());
   inv_mass_[n] = 1 / material_.node_mass;
+}
+
+void SolidBody::set_integrator(std::unique_ptr<Integrator> integrator) {
+  FELT_CHECK(!integrator || !solid_integrator_refusal(material_.model, integrator->name()));
+  integrator_ = std::move(integrator);
+  integrated_motion_.clear();
+}
+
+void SolidBody::restore_step_state(const StepState& state) {
+  x_ = state.x;
+  x_prev_ = state.x_prev;
+  v_ = state.v;
+  external_force_ = state.external_force;
+  previous_step_ = state.previous_step;
+  if (integrator_) integrator_->reset();
+  integrated_motion_.clear();
 }
 
 void SolidBody::clear_external_forces() {
@@ -127,6 +201,15 @@ void SolidBody::advance(Real h, const Vec3& gravity) {
       force[n] = gravity + inv_mass_[n] * external_force_[n];  // accelerations
     }
     matching->step(x_, v_, inv_mass_, force, h);
+  } else if (integrator_) {
+    // the integrator steps a ParticleState: the nodes' vectors are lent to it, not copied
+    integrated_.x.swap(x_);
+    integrated_.v.swap(v_);
+    integrator_->step(Dynamics(*this, gravity), integrated_, 0, h);
+    integrated_.x.swap(x_);
+    integrated_.v.swap(v_);
+    integrated_motion_.resize(x_.size());
+    for (std::size_t n = 0; n < x_.size(); ++n) integrated_motion_[n] = x_[n] - x_prev_[n];
   } else {
     internal_forces(force);
     // v is (x − x_prev)/h_prev (finish_step), so x + h v + ½h(h + h_prev) a is the time-corrected
@@ -145,6 +228,18 @@ void SolidBody::advance(Real h, const Vec3& gravity) {
 
 void SolidBody::finish_step(Real h) {
   FELT_CHECK(h > 0);
+  if (integrator_ && integrated_motion_.size() == x_.size()) {
+    // a node collision handling left alone keeps the integrator's velocity; one it moved (or
+    // whose velocity it changed, by moving the previous position: contact_surface.cpp) gets
+    // the backward difference it means. (Adding its change to the integrator's end velocity
+    // instead leaves a resting node of a multi-stage scheme falling: RK4's x − x_prev is
+    // h v + h² g/2, not h v_end, so zeroing it left −g h/2 and the body never came to rest.)
+    for (std::size_t n = 0; n < x_.size(); ++n) {
+      const Vec3 motion = x_[n] - x_prev_[n];
+      if (motion != integrated_motion_[n]) v_[n] = motion / h;
+    }
+    return;
+  }
   // the backward difference: the mean velocity over the step, including what collision
   // handling did; it is also the velocity the damping forces see in the next step
   for (std::size_t n = 0; n < x_.size(); ++n) v_[n] = (x_[n] - x_prev_[n]) / h;

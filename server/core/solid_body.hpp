@@ -4,11 +4,14 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/embedded_surface.hpp"
+#include "core/integrator.hpp"
 #include "core/node_mask.hpp"
 #include "core/tet_mesh.hpp"
 
@@ -62,6 +65,16 @@ struct SolidMaterial {
   FemMaterial fem;
 };
 
+/// The integrator name that stands for the thesis's own scheme (thesis 2 §4.5): position Verlet
+/// in its time-corrected form for a step length that changes, the default of the force models.
+constexpr std::string_view kTimeCorrectedVerlet = "time_corrected_verlet";
+
+/// Why the cloth integrator `name` (or kTimeCorrectedVerlet) does not apply to a solid of
+/// `model`, or nothing when it does. The explicit and symplectic schemes apply to the force
+/// models (mass-spring, FEM); IMEX, Desbrun and Kang to the mass-spring model, whose edges are
+/// springs; implicit Euler to neither (no force Jacobian); shape matching has its own update.
+std::optional<std::string> solid_integrator_refusal(SolidModel model, std::string_view name);
+
 class SolidBody {
  public:
   /// `mesh` must have positively oriented tetrahedra; its node positions are the rest shape
@@ -75,7 +88,12 @@ class SolidBody {
   const TetMesh& rest() const { return rest_; }
   const TetTopology& topology() const { return topology_; }
   const SolidMaterial& material() const { return material_; }
+  /// A new material keeps the integrator only when it still applies.
   void set_material(const SolidMaterial& material);
+  /// The integrator of a force model; null for kTimeCorrectedVerlet.
+  const Integrator* integrator() const { return integrator_.get(); }
+  /// `integrator` must apply to the model (solid_integrator_refusal); null: kTimeCorrectedVerlet.
+  void set_integrator(std::unique_ptr<Integrator> integrator);
 
   std::size_t node_count() const { return x_.size(); }
   std::vector<Vec3>& positions() { return x_; }
@@ -101,13 +119,8 @@ class SolidBody {
     out.external_force = external_force_;
     out.previous_step = previous_step_;
   }
-  void restore_step_state(const StepState& state) {
-    x_ = state.x;
-    x_prev_ = state.x_prev;
-    v_ = state.v;
-    external_force_ = state.external_force;
-    previous_step_ = state.previous_step;
-  }
+  /// Also forgets what the integrator kept from earlier steps.
+  void restore_step_state(const StepState& state);
 
   void pin(std::uint32_t n);
   void unpin(std::uint32_t n);
@@ -126,10 +139,12 @@ class SolidBody {
 
   /// Moves the nodes over one step of length h under the model, gravity and the external
   /// forces, before collisions: position Verlet in the time-corrected form for a step length
-  /// that differs from the previous one, or the shape-matching update. Keeps the positions
-  /// before the step as the previous positions.
+  /// that differs from the previous one, the body's integrator, or the shape-matching update.
+  /// Keeps the positions before the step as the previous positions.
   void advance(Real h, const Vec3& gravity);
-  /// Sets velocities from the positions after collision handling moved them.
+  /// Sets velocities after collision handling moved the nodes (and, through the previous
+  /// positions, changed their velocities): the backward difference, or with an integrator its
+  /// own velocities for the nodes collision handling did not touch.
   void finish_step(Real h);
   /// The largest step this body's stiffness allows for the explicit integration, s.
   Real stable_time_step() const;
@@ -155,6 +170,7 @@ class SolidBody {
 
  private:
   struct ModelState;  ///< per-model precomputation (rest lengths, FEM shape matrices, clusters)
+  class Dynamics;     ///< the body as a DynamicSystem, for its integrator
 
   std::string name_;
   TetMesh rest_;
@@ -166,6 +182,9 @@ class SolidBody {
   std::vector<Vec3> external_force_;
   Real previous_step_ = 0;  ///< length of the last step, 0 before the first
   std::unique_ptr<ModelState> model_state_;
+  std::unique_ptr<Integrator> integrator_;
+  ParticleState integrated_;  ///< the integrator's state; x and v live here during a step
+  std::vector<Vec3> integrated_motion_;  ///< per node, how far the integrator moved it
   std::shared_ptr<const EmbeddedSurface> embedded_;
 };
 

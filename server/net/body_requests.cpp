@@ -31,17 +31,23 @@ std::string range(const char* what, double lo, double hi) {
 }
 
 /// Why `set` cannot change a body of kind `kind`, or empty.
-std::string check_parameters(const v1::SetBodyParameters& set, const std::string& kind) {
-  const bool cloth = kind == "cloth";
-  if (kind == "collider") return "a collider has no parameters to set";
-  if (!cloth && (set.has_integrator() || set.has_drag() || set.has_structural_stiffness() ||
-                 set.has_shear_stiffness() || set.has_bend_stiffness() || set.has_max_strain())) {
+std::string check_parameters(const v1::SetBodyParameters& set, const BodyInfo& body) {
+  const bool cloth = body.kind == "cloth";
+  if (body.kind == "collider") return "a collider has no parameters to set";
+  if (!cloth && (set.has_drag() || set.has_structural_stiffness() || set.has_shear_stiffness() ||
+                 set.has_bend_stiffness() || set.has_max_strain())) {
     return "body " + std::to_string(set.body_id()) +
-           " is a solid: it takes damping and friction only";
+           " is a solid: it takes damping, friction and integrator only";
   }
   if (cloth && set.has_friction()) return "friction applies to solids only";
-  if (set.has_integrator() && !make_integrator(set.integrator())) {
-    return "unknown integrator \"" + set.integrator() + "\"";
+  if (set.has_integrator()) {
+    if (!cloth && body.solid_model) {
+      if (auto refused = solid_integrator_refusal(*body.solid_model, set.integrator())) {
+        return "body " + std::to_string(set.body_id()) + ": " + *refused;
+      }
+    } else if (!make_integrator(set.integrator())) {
+      return "unknown integrator \"" + set.integrator() + "\"";
+    }
   }
   if (set.has_drag() && !in_range(set.drag(), 0, kMaxDamping)) {
     return range("drag", 0, kMaxDamping);
@@ -93,6 +99,10 @@ void change_solid(const v1::SetBodyParameters& set, SolidBody& body) {
     material.fem.damping = set.damping();
   }
   body.set_material(material);
+  if (set.has_integrator()) {
+    body.set_integrator(
+        set.integrator() == kTimeCorrectedVerlet ? nullptr : make_integrator(set.integrator()));
+  }
 }
 
 void reply_body_updated(Session& session, std::uint64_t id, BodyId body) {
@@ -178,7 +188,7 @@ void handle_set_body_parameters(Session& session, std::uint64_t id,
   const auto body = changeable_body(session, id, set.body_id());
   if (!body) return;
   // everything is checked here, so the change the physics thread applies cannot fail
-  if (const std::string why = check_parameters(set, body->kind); !why.empty()) {
+  if (const std::string why = check_parameters(set, *body); !why.empty()) {
     session.send_error(id, v1::ERROR_CODE_BAD_REQUEST, why);
     return;
   }

@@ -33,6 +33,7 @@ BodyInfo describe_body(const World& world, BodyId id, ClientId owner) {
     info.triangles = static_cast<std::uint32_t>(fine ? fine->triangles.size()
                                                      : solid->topology().surface.size());
     info.nodes = static_cast<std::uint32_t>(solid->node_count());
+    info.solid_model = solid->material().model;
   } else {
     info.name = "collider" + std::to_string(id);
     info.kind = "collider";

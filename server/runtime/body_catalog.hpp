@@ -3,6 +3,7 @@
 // physics thread whenever bodies come or go, read by any thread, like the snapshots.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@ struct BodyInfo {
   std::uint32_t triangles = 0;
   std::uint32_t nodes = 0;  ///< what pins and states index: a cloth's particles, a solid's nodes
   ClientId owner = 0;       ///< the client that added it (the scene's loader for its own bodies)
+  std::optional<SolidModel> solid_model;  ///< a solid's model (which integrators apply)
 };
 
 struct BodyCatalog {

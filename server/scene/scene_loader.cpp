@@ -318,10 +318,10 @@ SceneBody read_body(const json& entry, const std::string& path, std::size_t inde
     return read_cloth(body, index, options, particles_left);
   }
   if (type && *type == "solid") {
-    const ObjectReader body(
-        entry, path,
-        {"name", "type", "lattice", "mesh", "tetgen", "torus", "sphere", "transform", "model",
-         "node_mass", "friction", "self_collision", "mass_spring", "shape_matching", "fem", "pin"});
+    const ObjectReader body(entry, path,
+                            {"name", "type", "lattice", "mesh", "tetgen", "torus", "sphere",
+                             "transform", "model", "node_mass", "friction", "self_collision",
+                             "mass_spring", "shape_matching", "fem", "pin", "integrator"});
     return read_solid(body, index, options.asset_root, time_step, particles_left);
   }
   fail(child(path, "type"), "must be \"cloth\" or \"solid\"");

@@ -198,6 +198,13 @@ SolidBody read_solid(const ObjectReader& body, std::size_t index,
       solid.pin(pins[i].get<std::uint32_t>());
     }
   }
+  if (body.has("integrator")) {
+    const std::string name = body.string("integrator", std::string(kTimeCorrectedVerlet));
+    if (const auto refused = solid_integrator_refusal(solid.material().model, name)) {
+      fail(body.path_of("integrator"), *refused);
+    }
+    if (name != kTimeCorrectedVerlet) solid.set_integrator(make_integrator(name));
+  }
   if (time_step / solid.stable_time_step() > kMaxSubsteps) {
     fail(body.path(), "too stiff for its node mass: a stable step would be " +
                           std::to_string(solid.stable_time_step()) +

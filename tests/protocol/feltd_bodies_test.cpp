@@ -20,6 +20,45 @@ std::optional<v1::Frame> frame_from(Client& client, std::uint64_t step) {
   return std::nullopt;
 }
 
+// A solid's integrator is chosen in its JSON and changed while it runs, among those that apply
+// to its model; the others are refused with the reason.
+TEST_F(FeltdTest, ASolidsIntegratorIsChosenAndChangedAmongThoseThatApply) {
+  auto client = greeted("integrators");
+  client->create_scene({});
+  const v1::BodyInfo springs = client
+                                   ->add_body(R"({"type": "solid", "integrator": "kang",
+      "lattice": {"cells": [2, 2, 2], "size": [0.2, 0.2, 0.2]}})")
+                                   .body();
+  v1::SetBodyParameters set;
+  set.set_body_id(springs.body_id());
+  for (const char* name : {"rk4", "time_corrected_verlet", "imex"}) {
+    set.set_integrator(name);
+    EXPECT_EQ(client->set_body_parameters(set).body_id(), springs.body_id()) << name;
+  }
+  set.set_integrator("implicit_euler");
+  try {
+    client->set_body_parameters(set);
+    ADD_FAILURE() << "implicit Euler was set on a solid";
+  } catch (const ClientError& e) {
+    EXPECT_EQ(e.code(), v1::ERROR_CODE_BAD_REQUEST);
+    EXPECT_NE(std::string(e.what()).find("needs a force Jacobian"), std::string::npos) << e.what();
+  }
+  const v1::BodyInfo matching = client
+                                    ->add_body(R"({"type": "solid", "model": "shape_matching",
+      "lattice": {"cells": [2, 2, 2], "size": [0.2, 0.2, 0.2]}})")
+                                    .body();
+  set.set_body_id(matching.body_id());
+  set.set_integrator("rk4");
+  expect_error([&] { client->set_body_parameters(set); }, v1::ERROR_CODE_BAD_REQUEST);
+  expect_error(
+      [&] {
+        client->add_body(R"({"type": "solid", "model": "corotated_fem", "integrator": "desbrun",
+            "lattice": {"cells": [2, 2, 2], "size": [0.2, 0.2, 0.2]}})");
+      },
+      v1::ERROR_CODE_BAD_SCENE);
+  EXPECT_GT(client->stats().scene().steps(), 0u);  // still stepping
+}
+
 TEST_F(FeltdTest, ClothsSolidsAndCollidersComeAndGo) {
   auto client = greeted("builder");
   client->create_scene({});

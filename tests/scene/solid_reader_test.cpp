@@ -1,3 +1,5 @@
+#include <array>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -127,6 +129,34 @@ TEST(SolidReader, NamesThePathOfTheBadValue) {
     edit(doc["bodies"][0]);
     EXPECT_NE(error_of(doc).find(expected), std::string::npos)
         << "expected \"" << expected << "\", got \"" << error_of(doc) << "\"";
+  }
+}
+
+// Cloth integrators apply to the solids' force models; the ones that do not say why.
+TEST(SolidReader, IntegratorsThatApplyToTheModelAndWhyTheOthersDoNot) {
+  const auto integrator_of = [](const char* model, const char* integrator) {
+    json doc = cube_scene();
+    doc["bodies"][0]["model"] = model;
+    doc["bodies"][0]["integrator"] = integrator;
+    const auto scene = load_scene(doc);
+    if (!scene) return std::string("refused: ") + scene.error().what();
+    const Integrator* chosen = scene->world.solids().bodies()[0].integrator();
+    return chosen ? std::string(chosen->name()) : std::string("time_corrected_verlet");
+  };
+  EXPECT_EQ(integrator_of("mass_spring", "rk4"), "rk4");
+  EXPECT_EQ(integrator_of("mass_spring", "kang"), "kang");
+  EXPECT_EQ(integrator_of("corotated_fem", "symplectic_euler"), "symplectic_euler");
+  EXPECT_EQ(integrator_of("mass_spring", "time_corrected_verlet"), "time_corrected_verlet");
+  const std::pair<std::array<const char*, 2>, const char*> refused[] = {
+      {{"shape_matching", "rk4"}, "shape matching moves its nodes by its own update"},
+      {{"mass_spring", "implicit_euler"}, "implicit_euler needs a force Jacobian"},
+      {{"corotated_fem", "imex"}, "imex takes springs implicitly and corotated_fem has none"},
+      {{"mass_spring", "warp"}, "unknown integrator \"warp\" (known: time_corrected_verlet,"},
+  };
+  for (const auto& [given, expected] : refused) {
+    const std::string got = integrator_of(given[0], given[1]);
+    EXPECT_NE(got.find("bodies[0].integrator: "), std::string::npos) << got;
+    EXPECT_NE(got.find(expected), std::string::npos) << got;
   }
 }
 
