@@ -72,6 +72,7 @@ class SolidBody::Dynamics final : public DynamicSystem {
         body_.model_state_->model);
     const Vec3 weight = body_.material_.node_mass * gravity_;
     for (std::size_t n = 0; n < f.size(); ++n) f[n] += weight + body_.external_force_[n];
+    body_.add_anchor_forces(x, v, f);
   }
 
   bool linear_force_pairs(std::vector<LinearPair>& pairs) const override {
@@ -158,6 +159,32 @@ void SolidBody::unpin(std::uint32_t n) {
   inv_mass_[n] = 1 / material_.node_mass;
 }
 
+void SolidBody::set_anchor(const Anchor& anchor) {
+  for (int c = 0; c < 4; ++c) {
+    FELT_CHECK(anchor.nodes[c] < x_.size() && anchor.weights[c] >= 0);
+  }
+  FELT_CHECK(anchor.target.allFinite() && anchor.stiffness >= 0 && anchor.damping >= 0);
+  remove_anchor(anchor.key);
+  anchors_.push_back(anchor);
+}
+
+void SolidBody::remove_anchor(std::uint32_t key) {
+  std::erase_if(anchors_, [key](const Anchor& a) { return a.key == key; });
+}
+
+void SolidBody::add_anchor_forces(std::span<const Vec3> x, std::span<const Vec3> v,
+                                  std::span<Vec3> f) const {
+  for (const Anchor& a : anchors_) {
+    Vec3 p = Vec3::Zero(), p_rate = Vec3::Zero();
+    for (int c = 0; c < 4; ++c) {
+      p += a.weights[c] * x[a.nodes[c]];
+      p_rate += a.weights[c] * v[a.nodes[c]];
+    }
+    const Vec3 pull = a.stiffness * (a.target - p) - a.damping * p_rate;
+    for (int c = 0; c < 4; ++c) f[a.nodes[c]] += a.weights[c] * pull;
+  }
+}
+
 void SolidBody::set_integrator(std::unique_ptr<Integrator> integrator) {
   FELT_CHECK(!integrator || !solid_integrator_refusal(material_.model, integrator->name()));
   integrator_ = std::move(integrator);
@@ -197,8 +224,10 @@ void SolidBody::advance(Real h, const Vec3& gravity) {
   x_prev_ = x_;
   std::vector<Vec3>& force = model_state_->force;
   if (auto* matching = std::get_if<ShapeMatching>(&model_state_->model)) {
+    std::ranges::fill(force, Vec3::Zero());
+    add_anchor_forces(x_, v_, force);
     for (std::size_t n = 0; n < x_.size(); ++n) {
-      force[n] = gravity + inv_mass_[n] * external_force_[n];  // accelerations
+      force[n] = gravity + inv_mass_[n] * (external_force_[n] + force[n]);  // accelerations
     }
     matching->step(x_, v_, inv_mass_, force, h);
   } else if (integrator_) {
@@ -212,6 +241,7 @@ void SolidBody::advance(Real h, const Vec3& gravity) {
     for (std::size_t n = 0; n < x_.size(); ++n) integrated_motion_[n] = x_[n] - x_prev_[n];
   } else {
     internal_forces(force);
+    add_anchor_forces(x_, v_, force);
     // v is (x − x_prev)/h_prev (finish_step), so x + h v + ½h(h + h_prev) a is the time-corrected
     // Verlet step x + (x − x_prev) h/h_prev + a h² of thesis 2 §4.5 with the acceleration term
     // of an uneven grid, which equals a h² at a constant step and makes the first step (no
@@ -246,17 +276,29 @@ void SolidBody::finish_step(Real h) {
 }
 
 Real SolidBody::stable_time_step() const {
+  // the anchors' springs act on one point each: they raise λ_max of K and D by at most the sum
+  // of their coefficients (each is a rank-3 term k w wᵀ with |w| ≤ 1)
+  Real anchor_stiffness = 0, anchor_damping = 0;
+  for (const Anchor& a : anchors_) {
+    anchor_stiffness += a.stiffness;
+    anchor_damping += a.damping;
+  }
+  const Real inv_mass = 1 / material_.node_mass;
   return std::visit(
       [&](const auto& model) -> Real {
         if constexpr (std::is_same_v<std::decay_t<decltype(model)>, ShapeMatching>) {
-          return std::numeric_limits<Real>::infinity();  // unconditionally stable
+          // unconditionally stable, but an anchor is an explicit spring
+          return anchors_.empty()
+                     ? std::numeric_limits<Real>::infinity()
+                     : kDeformationMargin * verlet_step_limit(inv_mass * anchor_stiffness,
+                                                              inv_mass * anchor_damping);
         } else {
           // the masses are uniform, so M⁻¹K has the eigenvalues of K over the node mass;
           // pinning nodes removes rows and columns, which cannot raise the largest one
-          const Real inv_mass = 1 / material_.node_mass;
           return kDeformationMargin *
-                 verlet_step_limit(inv_mass * model.largest_stiffness_eigenvalue(),
-                                   inv_mass * model.largest_damping_eigenvalue());
+                 verlet_step_limit(
+                     inv_mass * (model.largest_stiffness_eigenvalue() + anchor_stiffness),
+                     inv_mass * (model.largest_damping_eigenvalue() + anchor_damping));
         }
       },
       model_state_->model);

@@ -2,6 +2,7 @@
 // A simulated soft solid (thesis 2): an immutable tetrahedral mesh and its topology, the
 // material of one of three models, and the state of its nodes.
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -125,6 +126,23 @@ class SolidBody {
   void pin(std::uint32_t n);
   void unpin(std::uint32_t n);
 
+  /// A point of the body (a node, or a fine surface vertex: weights over a tetrahedron's
+  /// nodes) tied to a target by a damped zero-length spring, f = k (target − p) − c ṗ, spread
+  /// over the nodes by the weights (a grab). Unlike an external force it is evaluated at every
+  /// substep and counted in the stable step: a spring held fixed over a step overshoots on a
+  /// light node at a long step.
+  struct Anchor {
+    std::uint32_t key = 0;  ///< who set it (the surface vertex): setting it again replaces it
+    std::array<std::uint32_t, 4> nodes{};
+    std::array<Real, 4> weights{};  ///< non-negative, summing to 1
+    Vec3 target = Vec3::Zero();
+    Real stiffness = 0;  ///< N/m
+    Real damping = 0;    ///< N·s/m
+  };
+  void set_anchor(const Anchor& anchor);
+  void remove_anchor(std::uint32_t key);
+  const std::vector<Anchor>& anchors() const { return anchors_; }
+
   /// Adds a force on node n for the next step only (user and haptic forces): it acts in every
   /// advance() until clear_external_forces(), which the caller calls after the step's last
   /// substep.
@@ -172,6 +190,8 @@ class SolidBody {
   struct ModelState;  ///< per-model precomputation (rest lengths, FEM shape matrices, clusters)
   class Dynamics;     ///< the body as a DynamicSystem, for its integrator
 
+  void add_anchor_forces(std::span<const Vec3> x, std::span<const Vec3> v, std::span<Vec3> f) const;
+
   std::string name_;
   TetMesh rest_;
   TetTopology topology_;
@@ -180,6 +200,7 @@ class SolidBody {
   std::vector<Vec3> x_, x_prev_, v_;
   std::vector<Real> inv_mass_;
   std::vector<Vec3> external_force_;
+  std::vector<Anchor> anchors_;
   Real previous_step_ = 0;  ///< length of the last step, 0 before the first
   std::unique_ptr<ModelState> model_state_;
   std::unique_ptr<Integrator> integrator_;

@@ -170,6 +170,34 @@ void World::add_surface_force(BodyId id, std::uint32_t vertex, const Vec3& force
   }
 }
 
+void World::set_surface_anchor(BodyId id, std::uint32_t vertex, const Vec3& target, Real stiffness,
+                               Real damping) {
+  if (ClothBody* cloth_body = cloth(id)) {
+    cloth_body->set_anchor({vertex, target, stiffness, damping});
+    return;
+  }
+  SolidBody* solid_body = solid(id);
+  FELT_CHECK(solid_body != nullptr);
+  SolidBody::Anchor anchor{
+      vertex, {vertex, vertex, vertex, vertex}, {1, 0, 0, 0}, target, stiffness, damping};
+  if (const EmbeddedSurface* surface = solid_body->embedded_surface()) {
+    const Tetrahedron& tet = solid_body->rest().tets[surface->tet[vertex]];
+    for (int c = 0; c < 4; ++c) {
+      anchor.nodes[c] = tet[c];
+      anchor.weights[c] = surface->weights[vertex][c];
+    }
+  }
+  solid_body->set_anchor(anchor);
+}
+
+void World::remove_surface_anchor(BodyId id, std::uint32_t vertex) {
+  if (ClothBody* cloth_body = cloth(id)) {
+    cloth_body->remove_anchor(vertex);
+  } else if (SolidBody* solid_body = solid(id)) {
+    solid_body->remove_anchor(vertex);
+  }
+}
+
 void World::set_step_count(std::uint64_t steps) {
   step_count_ = steps;
   time_ = static_cast<Real>(step_count_) * settings_.time_step;

@@ -82,6 +82,11 @@ class World {
   /// Applies `force` at vertex `vertex` of what clients see of body `id` (the cloth's particle;
   /// for a solid, its fine surface vertex spread over the nodes that carry it) for the next step.
   void add_surface_force(BodyId id, std::uint32_t vertex, const Vec3& force);
+  /// Ties surface vertex `vertex` of cloth or solid `id` to `target` by a damped zero-length
+  /// spring (a grab) until remove_surface_anchor, replacing the one it had.
+  void set_surface_anchor(BodyId id, std::uint32_t vertex, const Vec3& target, Real stiffness,
+                          Real damping);
+  void remove_surface_anchor(BodyId id, std::uint32_t vertex);
   /// How many vertices clients see of body `id`: a cloth's particles, a solid's fine surface
   /// vertices or, without one, its nodes; 0 for a collider.
   std::size_t surface_vertex_count(BodyId id) const;

@@ -36,8 +36,8 @@ void ReactionAccumulator::forget(std::uint64_t proxy_key) {
 void ReactionAccumulator::apply_and_clear(World& world) {
   std::lock_guard lock(mutex_);
   spheres_.clear();
-  for (const auto& [body, particle] : anchored_) {
-    if (ClothBody* cloth = world.cloth(body)) cloth->remove_anchor(particle);
+  for (const auto& [body, vertex] : anchored_) {
+    if (world.contains(body)) world.remove_surface_anchor(body, vertex);
   }
   anchored_.clear();
   for (auto it = reactions_.begin(); it != reactions_.end();) {
@@ -50,20 +50,21 @@ void ReactionAccumulator::apply_and_clear(World& world) {
       reaction.forces.clear();
       reaction.samples = 0;
     }
-    ClothBody* grabbed = nullptr;
-    if (reaction.grab && !reaction.closed) grabbed = world.cloth(reaction.grab->body_id);
-    if (grabbed && reaction.grab->vertex < grabbed->model().particle_count()) {
+    // ids come from a snapshot, so check them against the world they are applied to
+    const auto in_world = [&](BodyId body, std::uint32_t vertex) {
+      return world.contains(body) && vertex < world.surface_vertex_count(body);  // 0: collider
+    };
+    if (reaction.grab && !reaction.closed &&
+        in_world(reaction.grab->body_id, reaction.grab->vertex)) {
       const GrabSpring& g = *reaction.grab;
-      grabbed->set_anchor({g.vertex, g.target, g.stiffness, g.damping});
+      world.set_surface_anchor(g.body_id, g.vertex, g.target, g.stiffness, g.damping);
       anchored_.emplace_back(g.body_id, g.vertex);
       it = std::next(it);
       continue;  // the anchor is the reaction
     }
     for (const ParticleForce& pf : reaction.held) {
-      // ids come from a snapshot, so check them against the world they are applied to
-      if (!world.contains(pf.body_id)) continue;
-      if (pf.particle >= world.surface_vertex_count(pf.body_id)) continue;
-      world.add_surface_force(pf.body_id, pf.particle, pf.force);
+      if (in_world(pf.body_id, pf.particle))
+        world.add_surface_force(pf.body_id, pf.particle, pf.force);
     }
     it = reaction.closed ? reactions_.erase(it) : std::next(it);
   }

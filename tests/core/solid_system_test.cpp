@@ -101,6 +101,43 @@ TEST_P(SolidSystemIntegrator, CubeDroppedOnTheFloorComesToRest) {
 INSTANTIATE_TEST_SUITE_P(Integrators, SolidSystemIntegrator,
                          ::testing::Values("symplectic_euler", "rk4", "kang"));
 
+// A light cube (27 nodes of 10 g) held by a stiff grab spring on its top centre node, at the
+// thesis's longest step: the spring is an anchor evaluated at every substep and counted in the
+// stable step, so the cube settles where the spring carries its whole weight, k (target − p) = M g.
+// The same spring as a force held over each step (how grabs on solids were applied) cannot hold
+// it: ω h = √(k/m) h = 3 for the node.
+TEST(SolidSystem, AGrabSpringHoldsALightBodyAtALongStep) {
+  constexpr Real kStiffness = 400, kDamping = 2, kNodeMass = 0.01;
+  const auto hanging = [&](bool anchored) {
+    SolidSystem system;
+    system.add_body(box_body({2, 2, 2}, Vec3::Constant(0.1), Vec3(-0.1, 0, -0.1),
+                             test::mass_spring(kNodeMass, 60, 20, 2)));
+    SolidBody& cube = system.bodies()[0];
+    const std::uint32_t top = node_at(cube, Vec3(0, 0.2, 0));
+    const Vec3 target(0, 0.25, 0);
+    bool failed = false;
+    for (int s = 0; s < 200 && !failed; ++s) {  // 3 s
+      if (anchored) {
+        cube.set_anchor({7, {top, top, top, top}, {1, 0, 0, 0}, target, kStiffness, kDamping});
+      } else {
+        cube.add_external_force(
+            top, kStiffness * (target - cube.positions()[top]) - kDamping * cube.velocities()[top]);
+      }
+      failed = system.step(kStep, kGravity, {}).unrecoverable;
+      cube.remove_anchor(7);
+    }
+    return std::pair{failed, cube.positions()[top] - target};
+  };
+  const auto [anchor_failed, offset] = hanging(true);
+  ASSERT_FALSE(anchor_failed);
+  const Real weight = 27 * kNodeMass * 9.81;
+  EXPECT_NEAR(offset.y(), -weight / kStiffness, 2e-4) << "the spring carries the weight";
+  EXPECT_LT(offset.head<1>().norm() + std::abs(offset.z()), 1e-6);
+  const auto [held_failed, held_offset] = hanging(false);
+  EXPECT_TRUE(held_failed || std::abs(held_offset.y() + weight / kStiffness) > 5e-3)
+      << "a held force settled too: " << held_offset.transpose();
+}
+
 // Heights where a vertical line through (x, z) crosses the surface of `body`, lowest and
 // highest, found by brute force over its surface triangles; none when it misses.
 std::optional<std::pair<Real, Real>> surface_span(const SolidBody& body, Real x, Real z) {
