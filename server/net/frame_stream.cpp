@@ -147,12 +147,30 @@ void FrameStream::dropped() {
   building_ = {};
 }
 
+std::size_t FrameStream::FrameRecord::bytes() const {
+  std::size_t total = 0;
+  for (const BodyRecord& body : bodies) {
+    total += (body.positions.size() + body.normals.size()) * sizeof(std::uint16_t);
+  }
+  return total;
+}
+
+std::size_t FrameStream::history_bytes() const {
+  std::size_t total = base_ ? base_->bytes() : 0;
+  for (const FrameRecord& frame : written_) total += frame.bytes();
+  return total;
+}
+
 void FrameStream::written() {
   building_topology_.clear();
   if (!options_.quantized || !options_.deltas) return;
   written_.push_back(std::move(building_));
   building_ = {};
-  if (written_.size() > kKeptFrames) written_.pop_front();
+  // the oldest go first: an acknowledgement names a recent frame
+  while (!written_.empty() &&
+         (written_.size() > kKeptFrames || history_bytes() > max_history_bytes_)) {
+    written_.pop_front();
+  }
 }
 
 bool FrameStream::acknowledge(std::uint64_t sequence) {
@@ -163,6 +181,8 @@ bool FrameStream::acknowledge(std::uint64_t sequence) {
   if (it == written_.end()) return true;
   if (!base_ || base_->sequence < sequence) base_ = *it;
   written_.erase(written_.begin(), it);
+  while (!written_.empty() && history_bytes() > max_history_bytes_) written_.pop_front();
+  if (base_ && base_->bytes() > max_history_bytes_) base_.reset();
   return true;
 }
 

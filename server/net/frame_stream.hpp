@@ -25,6 +25,13 @@ struct FrameOptions {
 
 class FrameStream {
  public:
+  /// What a client's delta history may cost, bytes: the frames kept as bases and the
+  /// acknowledged base (the frame being built comes on top).
+  static constexpr std::size_t kMaxHistoryBytes = std::size_t{64} << 20;
+
+  explicit FrameStream(std::size_t max_history_bytes = kMaxHistoryBytes)
+      : max_history_bytes_(max_history_bytes) {}
+
   bool active() const { return active_; }
   const FrameOptions& options() const { return options_; }
 
@@ -48,8 +55,12 @@ class FrameStream {
   /// frame with that sequence was built.
   bool acknowledge(std::uint64_t sequence);
 
-  /// Frames written and kept as possible delta bases (bounds the memory a client costs).
+  /// Frames written and kept as possible delta bases, at most; fewer when they would cost more
+  /// than the history's budget (a scene of millions of vertices), and none when one frame
+  /// would: every frame is then a key frame.
   static constexpr std::size_t kKeptFrames = 8;
+  /// The bytes the delta history holds now (within the budget).
+  std::size_t history_bytes() const;
   /// A delta's base is at most this many frames older than the delta; older, and the frame is a
   /// key frame until an acknowledgement brings a newer base (a client keeps its last 16).
   static constexpr std::uint64_t kMaxBaseAge = 12;
@@ -65,12 +76,14 @@ class FrameStream {
     std::uint64_t sequence = 0;
     std::vector<BodyRecord> bodies;
     const BodyRecord* find(BodyId id) const;
+    std::size_t bytes() const;
   };
 
   bool wanted(BodyId id) const;
   void put_quantized(const BodySnapshot& body, const BodyRecord* base, BodyRecord& record,
                      felt::v1::BodyFrame& out);
 
+  std::size_t max_history_bytes_;
   bool active_ = false;
   FrameOptions options_;
   std::uint64_t next_sequence_ = 1;

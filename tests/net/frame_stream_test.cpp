@@ -157,6 +157,34 @@ TEST(FrameStream, DeltasUseOnlyAcknowledgedFramesAndABodyLeavingItsBoundsGetsAKe
   EXPECT_NE(lost.error().find("not kept"), std::string::npos);
 }
 
+// The delta history is bounded in bytes: a frame of this 30 x 30 cloth keeps 5.4 kB, so a
+// budget of 12 kB keeps two frames (a base and one more, or two unacknowledged) and deltas
+// still work against a recent acknowledgement; a budget below one frame keeps none, and every
+// frame is a key frame the client decodes on its own.
+TEST(FrameStream, TheDeltaHistoryStaysWithinItsBudget) {
+  constexpr std::size_t kFrameBytes = 900 * 3 * sizeof(std::uint16_t);
+  for (const std::size_t budget : {2 * kFrameBytes + 100, kFrameBytes / 2}) {
+    World world = swinging_world();
+    FrameStream stream(budget);
+    stream.start({60, false, {}, true, true});
+    client::FrameAssembler assembler;
+    std::uint64_t last = 0;
+    for (int f = 0; f < 12; ++f) {
+      world.step();
+      const Sent sent = send(stream, world, assembler);
+      EXPECT_LE(stream.history_bytes(), budget) << "frame " << f;
+      if (budget < kFrameBytes) {
+        EXPECT_EQ(sent.frame.base_sequence(), 0u) << "frame " << f;
+      } else if (f > 1) {
+        EXPECT_EQ(sent.frame.base_sequence(), last) << "frame " << f;  // the one acknowledged
+      }
+      EXPECT_LT(max_error(sent.decoded, 0, world), half_step(sent.frame, 0));
+      ASSERT_TRUE(stream.acknowledge(sent.frame.sequence()));
+      last = sent.frame.sequence();
+    }
+  }
+}
+
 TEST(FrameStream, ADroppedFrameGivesItsTrianglesToTheNext) {
   World world = swinging_world();
   FrameStream stream;
