@@ -49,6 +49,8 @@ void Server::accept() {
             std::erase_if(sessions_, [](const std::weak_ptr<Session>& s) { return s.expired(); });
             sessions_.push_back(session);
             session->start();
+            // accepted while shutdown() went through the sessions: it hears the goodbye too
+            if (shutting_down_) session->close_gracefully();
           }
         }
         accept();
@@ -62,6 +64,7 @@ void Server::shutdown() {
     acceptor_.close(ignored);
   });
   std::lock_guard lock(sessions_mutex_);
+  shutting_down_ = true;
   for (const auto& weak : sessions_) {
     if (auto session = weak.lock()) session->close_gracefully();
   }

@@ -39,6 +39,7 @@ class Server {
   boost::asio::ip::tcp::acceptor acceptor_;
   std::mutex sessions_mutex_;
   std::vector<std::weak_ptr<Session>> sessions_;
+  bool shutting_down_ = false;  ///< shutdown() ran: new sessions are told goodbye at once
 };
 
 }  // namespace felt::net
