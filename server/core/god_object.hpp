@@ -78,6 +78,10 @@ class GodObject {
   void set_settings(const ProxySettings& settings) { settings_ = settings; }
   /// The god-object's centre as last reported (touching the surface at exactly the radius).
   const Vec3& proxy() const { return proxy_; }
+  /// Lets go of the surface kept from the previous update, and of the snapshots under it (a
+  /// proxy left idle must not hold a large scene's memory): the next update is not tested
+  /// against the motion since, and starts where the proxy was.
+  void forget_previous_surface() { previous_.reset(); }
 
  private:
   /// Where the proxy sits relative to a triangle: the barycentric coordinates of the

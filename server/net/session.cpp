@@ -14,6 +14,8 @@ namespace {
 // requests handled per turn of a session before the others get theirs (fairness on the one
 // network thread: a client flooding updates waits for its next turn, not everyone else)
 constexpr int kRequestsPerTurn = 32;
+/// A proxy not updated for this long lets go of the surface it kept from its last update.
+constexpr auto kProxyIdle = std::chrono::seconds(1);
 
 }  // namespace
 
@@ -369,11 +371,17 @@ void Session::schedule_frame() {
   });
 }
 
+void Session::forget_idle_proxy_surfaces() {
+  const SteadyClock::time_point now = SteadyClock::now();
+  for (auto& [id, proxy] : proxies_) proxy.forget_surface_if_idle(now, kProxyIdle);
+}
+
 void Session::on_frame_tick() {
   if (closed_ || !frames_.active()) {
     timer_running_ = false;
     return;
   }
+  forget_idle_proxy_surfaces();
   if (scene_) {
     const auto snapshot = scene_->latest();
     if (frames_.has_new(*snapshot)) {

@@ -34,6 +34,12 @@ Real HapticProxy::seconds_since_last(SteadyClock::time_point now) {
   return dt;
 }
 
+void HapticProxy::forget_surface_if_idle(SteadyClock::time_point now, SteadyClock::duration idle) {
+  if (god_ && last_update_ != SteadyClock::time_point{} && now - last_update_ > idle) {
+    god_->forget_previous_surface();
+  }
+}
+
 ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec3& device,
                                 std::uint32_t buttons, ReactionAccumulator& reactions) {
   if (!god_) god_.emplace(settings_, starting_point(surface, device));

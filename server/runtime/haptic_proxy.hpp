@@ -39,6 +39,9 @@ class HapticProxy {
 
   /// Seconds since the previous call (0 the first time): the `dt` of a live update.
   Real seconds_since_last(SteadyClock::time_point now);
+  /// When the last live update is more than `idle` before `now`, lets go of the surface the
+  /// god-object kept from it (see GodObject::forget_previous_surface).
+  void forget_surface_if_idle(SteadyClock::time_point now, SteadyClock::duration idle);
 
  private:
   struct Grab {

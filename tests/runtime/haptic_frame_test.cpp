@@ -11,6 +11,8 @@
 #include "core/god_object.hpp"
 #include "core/surface_normals.hpp"
 #include "runtime/haptic_frame.hpp"
+#include "runtime/haptic_proxy.hpp"
+#include "runtime/reaction_accumulator.hpp"
 
 namespace felt {
 namespace {
@@ -98,6 +100,30 @@ TEST(HapticFrame, AKeptSurfaceHoldsItsSnapshotsAfterTheFrameIsReused) {
   for (int step = 3; step <= 6; ++step) publisher.publish(snapshot_at(step, -0.01 * step, surface));
   EXPECT_FALSE(watched.expired()) << "a kept surface's vertices were freed under it";
   EXPECT_EQ(kept.bodies[0].to[0].z(), -0.01);
+}
+
+// A proxy keeps the snapshots it last rendered against until its next update, unless it is
+// idle: then it lets them go (an idle client must not hold a large scene's memory).
+TEST(HapticFrame, AnIdleProxyLetsGoOfTheSnapshotsItKept) {
+  const auto surface = square_cloth();
+  ReactionAccumulator reactions;
+  HapticProxy proxy(1, ProxySettings{});
+  std::weak_ptr<const SceneSnapshot> kept;
+  {
+    Publisher publisher;
+    auto snapshot = snapshot_at(1, 0, surface);
+    kept = snapshot;
+    const HapticFrame& frame = publisher.publish(std::move(snapshot));
+    const SteadyClock::time_point now = SteadyClock::now();
+    proxy.seconds_since_last(now);
+    proxy.update(frame.surface_at(1), 0, Vec3(0.1, 0.1, 0.05), 0, reactions);
+    proxy.forget_surface_if_idle(now + std::chrono::milliseconds(500), std::chrono::seconds(1));
+  }
+  EXPECT_FALSE(kept.expired()) << "a proxy updated half a second ago keeps its surface";
+  proxy.forget_surface_if_idle(SteadyClock::now() + std::chrono::seconds(2),
+                               std::chrono::seconds(1));
+  EXPECT_TRUE(kept.expired());
+  reactions.forget(1);
 }
 
 // The cloth comes down 1 cm per frame from 2.5 cm above a still device; the proxy is updated
