@@ -56,7 +56,12 @@ TEST_F(FeltdTest, ASolidsIntegratorIsChosenAndChangedAmongThoseThatApply) {
             "lattice": {"cells": [2, 2, 2], "size": [0.2, 0.2, 0.2]}})");
       },
       v1::ERROR_CODE_BAD_SCENE);
-  EXPECT_GT(client->stats().scene().steps(), 0u);  // still stepping
+  // the scene steps on (its first step may still be coming)
+  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  while (client->stats().scene().steps() == 0 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(10ms);
+  }
+  EXPECT_GT(client->stats().scene().steps(), 0u);
 }
 
 TEST_F(FeltdTest, ClothsSolidsAndCollidersComeAndGo) {
