@@ -159,9 +159,23 @@ void SolidBody::unpin(std::uint32_t n) {
   inv_mass_[n] = 1 / material_.node_mass;
 }
 
+SolidBody::SurfacePoint SolidBody::surface_point(std::uint32_t vertex) const {
+  if (!embedded_) {
+    FELT_CHECK(vertex < x_.size());
+    return {{vertex, vertex, vertex, vertex}, {1, 0, 0, 0}};
+  }
+  const Tetrahedron& tet = rest_.tets[embedded_->tet[vertex]];
+  SurfacePoint point;
+  for (int c = 0; c < 4; ++c) {
+    point.nodes[c] = tet[c];
+    point.weights[c] = embedded_->weights[vertex][c];
+  }
+  return point;
+}
+
 void SolidBody::set_anchor(const Anchor& anchor) {
   for (int c = 0; c < 4; ++c) {
-    FELT_CHECK(anchor.nodes[c] < x_.size() && anchor.weights[c] >= 0);
+    FELT_CHECK(anchor.point.nodes[c] < x_.size() && anchor.point.weights[c] >= 0);
   }
   FELT_CHECK(anchor.target.allFinite() && anchor.stiffness >= 0 && anchor.damping >= 0);
   remove_anchor(anchor.key);
@@ -176,12 +190,13 @@ void SolidBody::add_anchor_forces(std::span<const Vec3> x, std::span<const Vec3>
                                   std::span<Vec3> f) const {
   for (const Anchor& a : anchors_) {
     Vec3 p = Vec3::Zero(), p_rate = Vec3::Zero();
+    const auto& [nodes, weights] = a.point;
     for (int c = 0; c < 4; ++c) {
-      p += a.weights[c] * x[a.nodes[c]];
-      p_rate += a.weights[c] * v[a.nodes[c]];
+      p += weights[c] * x[nodes[c]];
+      p_rate += weights[c] * v[nodes[c]];
     }
     const Vec3 pull = a.stiffness * (a.target - p) - a.damping * p_rate;
-    for (int c = 0; c < 4; ++c) f[a.nodes[c]] += a.weights[c] * pull;
+    for (int c = 0; c < 4; ++c) f[nodes[c]] += weights[c] * pull;
   }
 }
 

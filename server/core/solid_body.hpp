@@ -131,10 +131,18 @@ class SolidBody {
   /// over the nodes by the weights (a grab). Unlike an external force it is evaluated at every
   /// substep and counted in the stable step: a spring held fixed over a step overshoots on a
   /// light node at a long step.
+  /// Nodes and their weights (non-negative, summing to 1) that carry a point of the body.
+  struct SurfacePoint {
+    std::array<std::uint32_t, 4> nodes{};
+    std::array<Real, 4> weights{};
+  };
+  /// Surface vertex `vertex` as clients see it (surface_vertex_count): its tetrahedron's nodes
+  /// with its barycentric coordinates, or without a fine surface the node itself.
+  SurfacePoint surface_point(std::uint32_t vertex) const;
+
   struct Anchor {
     std::uint32_t key = 0;  ///< who set it (the surface vertex): setting it again replaces it
-    std::array<std::uint32_t, 4> nodes{};
-    std::array<Real, 4> weights{};  ///< non-negative, summing to 1
+    SurfacePoint point;
     Vec3 target = Vec3::Zero();
     Real stiffness = 0;  ///< N/m
     Real damping = 0;    ///< N·s/m

@@ -159,14 +159,10 @@ void World::add_surface_force(BodyId id, std::uint32_t vertex, const Vec3& force
   }
   SolidBody* solid_body = solid(id);
   FELT_CHECK(solid_body != nullptr);
-  const EmbeddedSurface* surface = solid_body->embedded_surface();
-  if (!surface) {
-    solid_body->add_external_force(vertex, force);
-    return;
-  }
-  const Tetrahedron& tet = solid_body->rest().tets[surface->tet[vertex]];
+  const SolidBody::SurfacePoint point = solid_body->surface_point(vertex);
   for (int c = 0; c < 4; ++c) {
-    solid_body->add_external_force(tet[c], surface->weights[vertex][c] * force);
+    if (point.weights[c] != 0)
+      solid_body->add_external_force(point.nodes[c], point.weights[c] * force);
   }
 }
 
@@ -178,16 +174,7 @@ void World::set_surface_anchor(BodyId id, std::uint32_t vertex, const Vec3& targ
   }
   SolidBody* solid_body = solid(id);
   FELT_CHECK(solid_body != nullptr);
-  SolidBody::Anchor anchor{
-      vertex, {vertex, vertex, vertex, vertex}, {1, 0, 0, 0}, target, stiffness, damping};
-  if (const EmbeddedSurface* surface = solid_body->embedded_surface()) {
-    const Tetrahedron& tet = solid_body->rest().tets[surface->tet[vertex]];
-    for (int c = 0; c < 4; ++c) {
-      anchor.nodes[c] = tet[c];
-      anchor.weights[c] = surface->weights[vertex][c];
-    }
-  }
-  solid_body->set_anchor(anchor);
+  solid_body->set_anchor({vertex, solid_body->surface_point(vertex), target, stiffness, damping});
 }
 
 void World::remove_surface_anchor(BodyId id, std::uint32_t vertex) {

@@ -125,7 +125,7 @@ void FrameStream::build(const SceneSnapshot& snapshot, SceneId scene, std::uint6
       put_floats(body.positions, *out->mutable_positions());
       if (options_.normals) put_floats(body.normals, *out->mutable_normals());
     }
-    const Topology topology{body.body_id, body.surface.get()};
+    const Topology topology{body.body_id, body.surface};
     if (std::find(topology_sent_.begin(), topology_sent_.end(), topology) == topology_sent_.end()) {
       auto& triangles = *out->mutable_triangles();
       triangles.Reserve(static_cast<int>(3 * body.triangles().size()));

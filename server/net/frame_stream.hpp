@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -92,7 +93,8 @@ class FrameStream {
   /// triangles the client has
   struct Topology {
     BodyId body_id = 0;
-    const std::vector<Triangle>* surface = nullptr;
+    /// held, so that a freed surface's address cannot come back as a new surface's
+    std::shared_ptr<const std::vector<Triangle>> surface;
     bool operator==(const Topology&) const = default;
   };
   std::vector<Topology> topology_sent_;

@@ -108,7 +108,8 @@ void handle_proxy_update(Session& session, std::uint64_t id, const v1::ProxyUpda
   }
   const ProxyOutput out = session.scene()->render(*proxy, position, update.buttons());
   const HapticContact& contact = out.contact;
-  session.forget_idle_proxy_surfaces();  // an idle proxy beside this one lets its snapshots go
+  // an idle proxy beside this one lets its snapshots go (no clock read: the update's time)
+  session.forget_idle_proxy_surfaces(proxy->last_update());
   reply(session, id, [&](v1::ServerMessage& message) {
     v1::ForceUpdate* force = message.mutable_force_update();
     force->set_proxy_id(update.proxy_id());

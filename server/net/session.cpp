@@ -371,8 +371,7 @@ void Session::schedule_frame() {
   });
 }
 
-void Session::forget_idle_proxy_surfaces() {
-  const SteadyClock::time_point now = SteadyClock::now();
+void Session::forget_idle_proxy_surfaces(SteadyClock::time_point now) {
   for (auto& [id, proxy] : proxies_) proxy.forget_surface_if_idle(now, kProxyIdle);
 }
 
@@ -381,7 +380,7 @@ void Session::on_frame_tick() {
     timer_running_ = false;
     return;
   }
-  forget_idle_proxy_surfaces();
+  forget_idle_proxy_surfaces(SteadyClock::now());
   if (scene_) {
     const auto snapshot = scene_->latest();
     if (frames_.has_new(*snapshot)) {

@@ -99,8 +99,9 @@ class Session : public std::enable_shared_from_this<Session> {
   std::uint32_t open_proxy(const ProxySettings& settings);
   bool close_proxy(std::uint32_t proxy_id);
   std::size_t open_proxies() const { return proxies_.size(); }
-  /// Proxies not updated for a second let go of the surface (and snapshots) they kept.
-  void forget_idle_proxy_surfaces();
+  /// Proxies not updated for a second before `now` let go of the surface (and snapshots) they
+  /// kept.
+  void forget_idle_proxy_surfaces(SteadyClock::time_point now);
 
   /// Streams frames of the joined scene (again, from a key frame).
   void subscribe_frames(const FrameOptions& options);

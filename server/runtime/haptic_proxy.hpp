@@ -39,6 +39,8 @@ class HapticProxy {
 
   /// Seconds since the previous call (0 the first time): the `dt` of a live update.
   Real seconds_since_last(SteadyClock::time_point now);
+  /// When the last live update was (what seconds_since_last was given).
+  SteadyClock::time_point last_update() const { return last_update_; }
   /// When the last live update is more than `idle` before `now`, lets go of the surface the
   /// god-object kept from it (see GodObject::forget_previous_surface).
   void forget_surface_if_idle(SteadyClock::time_point now, SteadyClock::duration idle);

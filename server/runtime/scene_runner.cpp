@@ -476,6 +476,7 @@ void SceneRunner::run(std::stop_token stop) {
   };
 
   while (!stop.stop_requested()) {
+    const std::uint64_t published_before = published_;
     bool changed = commands_.apply_all(scene_);
     bool stepped = false;
     if (!step_requests_.empty()) {
@@ -518,7 +519,8 @@ void SceneRunner::run(std::stop_token stop) {
     }
     report_health(false);
     if (stepped || changed) {
-      publish();
+      // a command that changed the bodies published them itself: not the same state again
+      if (stepped || published_ == published_before) publish();
       publish_haptics(SteadyClock::now());
     }
 

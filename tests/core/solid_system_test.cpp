@@ -118,7 +118,7 @@ TEST(SolidSystem, AGrabSpringHoldsALightBodyAtALongStep) {
     bool failed = false;
     for (int s = 0; s < 200 && !failed; ++s) {  // 3 s
       if (anchored) {
-        cube.set_anchor({7, {top, top, top, top}, {1, 0, 0, 0}, target, kStiffness, kDamping});
+        cube.set_anchor({7, cube.surface_point(top), target, kStiffness, kDamping});
       } else {
         cube.add_external_force(
             top, kStiffness * (target - cube.positions()[top]) - kDamping * cube.velocities()[top]);
