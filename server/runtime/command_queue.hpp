@@ -29,16 +29,14 @@ class CommandQueue {
     return false;
   }
 
-  /// Runs every queued command on `scene`, in the order they were pushed. True if there was any.
-  bool apply_all(Scene& scene) {
+  /// Runs every queued command on `scene`, in the order they were pushed.
+  void apply_all(Scene& scene) {
     {
       std::lock_guard lock(mutex_);
       running_.swap(pending_);
     }
-    const bool any = !running_.empty();
     for (Command& command : running_) command.run(scene);
     running_.clear();
-    return any;
   }
 
   bool empty() const {

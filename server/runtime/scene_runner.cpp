@@ -477,7 +477,7 @@ void SceneRunner::run(std::stop_token stop) {
 
   while (!stop.stop_requested()) {
     const std::uint64_t published_before = published_;
-    bool changed = commands_.apply_all(scene_);
+    commands_.apply_all(scene_);
     bool stepped = false;
     if (!step_requests_.empty()) {
       // requested steps of a paused scene, as fast as they go; other requests still get in
@@ -490,7 +490,7 @@ void SceneRunner::run(std::stop_token stop) {
           step_requests_.front().done(status());
           step_requests_.erase(step_requests_.begin());
         }
-        changed |= commands_.apply_all(scene_);
+        commands_.apply_all(scene_);
         if (Clock::now() - last_publish >= kBurstPublishPeriod) {
           publish();
           publish_haptics(SteadyClock::now());
@@ -511,18 +511,18 @@ void SceneRunner::run(std::stop_token stop) {
         lag = h;
       }
       while (lag >= h && !stop.stop_requested() && !paused_ && step_requests_.empty()) {
-        if (stepped) changed |= commands_.apply_all(scene_);
+        if (stepped) commands_.apply_all(scene_);
         timed_step();
         lag -= h;
         stepped = true;
       }
     }
     report_health(false);
-    if (stepped || changed) {
-      // a command that changed the bodies published them itself: not the same state again
-      if (stepped || published_ == published_before) publish();
-      publish_haptics(SteadyClock::now());
-    }
+    // a command that changes what clients see (bodies added, removed, reset, restored)
+    // publishes it itself; the others (pause, time scale, pins, parameters, forces) leave a
+    // paused scene as it was, and its subscribers get no frame for them
+    if (stepped) publish();
+    if (stepped || published_ != published_before) publish_haptics(SteadyClock::now());
 
     const Clock::time_point after = Clock::now();
     {

@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "core/world.hpp"
-#include "runtime/scene_event.hpp"
 
 namespace felt {
 
@@ -31,9 +30,6 @@ struct SceneSnapshot {
   std::uint64_t step = 0;
   Real sim_time = 0;
   std::vector<BodySnapshot> bodies;
-  /// the scene's latest events, oldest first (null when there were none); sequence numbers
-  /// tell a reader which it has not seen
-  std::shared_ptr<const std::vector<SceneEvent>> events;
 
   /// The body with id `id` (looked for at `hint` first), or null.
   const BodySnapshot* find(BodyId id, std::size_t hint = 0) const;

@@ -61,6 +61,25 @@ TEST(SceneRunnerRequests, APausedSceneTakesExactlyTheStepsAskedFor) {
   EXPECT_EQ(f.kinds(), (std::vector<Kind>{Kind::kPaused, Kind::kResumed}));
 }
 
+// A paused scene publishes a new snapshot (a frame to every subscriber) only for what changes
+// what clients see: not for pausing again, a time scale, pins, forces or saving its state.
+TEST(SceneRunnerRequests, APausedScenePublishesOnlyVisibleChanges) {
+  Fixture f;
+  ASSERT_TRUE(await<SceneStatus>([&](auto done) { f.runner.pause(1, done); }));
+  std::this_thread::sleep_for(20ms);  // the pausing turn of the loop has ended
+  const std::uint64_t version = f.runner.latest()->version;
+  ASSERT_TRUE(await<SceneStatus>([&](auto done) { f.runner.pause(1, done); }));
+  ASSERT_TRUE(await<SceneStatus>([&](auto done) { f.runner.set_time_scale(1, 0.5, done); }));
+  ASSERT_TRUE(
+      await<BodyId>([&](auto done) { f.runner.apply_force(1, 0, {0}, Vec3(0, 1, 0), 1.0, done); }));
+  f.runner.change_body(1, 0, [](World& world) { world.cloth(0)->pin(5); });
+  ASSERT_TRUE(await<SavedState>([&](auto done) { f.runner.save_state(1, done); }));
+  std::this_thread::sleep_for(20ms);
+  EXPECT_EQ(f.runner.latest()->version, version);
+  ASSERT_TRUE(await<BodyInfo>([&](auto done) { f.runner.add_body(1, another_cloth(), done); }));
+  EXPECT_GT(f.runner.latest()->version, version);
+}
+
 TEST(SceneRunnerRequests, StepsNeedAPausedSceneAndASaneCount) {
   Fixture f;
   const auto running = await<SceneStatus>([&](auto done) { f.runner.step(1, 5, done); });
