@@ -68,8 +68,15 @@ void handle_time_scale(Session& session, std::uint64_t id, const v1::SetTimeScal
 }
 
 void handle_reset(Session& session, std::uint64_t id) {
-  control(session, id, [](SceneRunner& scene, ClientId by, Completion<SceneStatus> done) {
-    scene.reset(by, std::move(done));
+  if (!may_control(session, id)) return;
+  auto pending = defer_or_refuse(session, id);
+  if (!pending) return;
+  // built again on the loader thread: the scene keeps stepping until the new one is in
+  boost::asio::post(session.context().loader, [scene = session.scene(), by = session.client_id(),
+                                               done = answer_status(pending, session.scene_id())] {
+    auto fresh = scene->rebuild();
+    if (!fresh) return done(std::unexpected(fresh.error()));
+    scene->reset(by, std::move(*fresh), done);
   });
 }
 

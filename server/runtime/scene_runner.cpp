@@ -173,25 +173,26 @@ void SceneRunner::set_time_scale(ClientId by, double scale, Completion<SceneStat
   });
 }
 
-void SceneRunner::reset(ClientId by, Completion<SceneStatus> done) {
-  request<SceneStatus>(std::move(done), [this, by](Scene& scene, Completion<SceneStatus>& done) {
-    if (!reload_) {
-      done(
-          std::unexpected(error(RunnerError::Code::kWrongState,
-                                "this scene was built by requests and has no source to reset to")));
-      return;
-    }
-    auto fresh = reload_();
-    if (!fresh) {
-      done(std::unexpected(error(RunnerError::Code::kBadScene, fresh.error().what())));
-      return;
-    }
+std::expected<Scene, RunnerError> SceneRunner::rebuild() const {
+  if (!reload_) {
+    return std::unexpected(error(RunnerError::Code::kWrongState,
+                                 "this scene was built by requests and has no source to reset to"));
+  }
+  auto fresh = reload_();
+  if (!fresh) return std::unexpected(error(RunnerError::Code::kBadScene, fresh.error().what()));
+  return std::move(*fresh);
+}
+
+void SceneRunner::reset(ClientId by, Scene fresh, Completion<SceneStatus> done) {
+  auto shared_fresh = std::make_shared<Scene>(std::move(fresh));
+  request<SceneStatus>(std::move(done), [this, by, shared_fresh](Scene& scene,
+                                                                 Completion<SceneStatus>& done) {
     for (StepRequest& pending : step_requests_) {
       pending.done(std::unexpected(error(RunnerError::Code::kCancelled, "the scene was reset")));
     }
     step_requests_.clear();
-    fresh->world.continue_ids_from(scene.world);
-    scene.world = std::move(fresh->world);
+    shared_fresh->world.continue_ids_from(scene.world);
+    scene.world = std::move(shared_fresh->world);
     own_scene_bodies();
     timed_forces_.clear();
     resync_ = true;

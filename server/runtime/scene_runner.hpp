@@ -119,8 +119,11 @@ class SceneRunner {
   void step(ClientId by, std::uint32_t steps, Completion<SceneStatus> done);
   /// Simulated seconds per wall second while running, (0, 100].
   void set_time_scale(ClientId by, double scale, Completion<SceneStatus> done);
-  /// Builds the scene again from its source: bodies added since are gone, time is 0.
-  void reset(ClientId by, Completion<SceneStatus> done);
+  /// Builds the scene again from its source, on the calling thread (a loader's: building can
+  /// take long, and the scene keeps stepping meanwhile). Safe from any thread.
+  std::expected<Scene, RunnerError> rebuild() const;
+  /// Replaces the scene with `fresh`, from rebuild: bodies added since are gone, time is 0.
+  void reset(ClientId by, Scene fresh, Completion<SceneStatus> done);
   /// Keeps the state (the latest kMaxSavedStates saves) and returns it.
   void save_state(ClientId by, Completion<SavedState> done);
   void restore_state(ClientId by, std::uint32_t state_id, Completion<SceneStatus> done);

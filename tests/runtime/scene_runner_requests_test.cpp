@@ -186,7 +186,10 @@ TEST(SceneRunnerRequests, ResetBuildsTheSceneAgainFromItsSource) {
   Fixture f;
   ASSERT_TRUE(await<BodyInfo>([&](auto done) { f.runner.add_body(1, another_cloth(), done); }));
   ASSERT_TRUE(wait_for([&] { return f.runner.latest()->sim_time > 0.1; }));
-  const auto reset = await<SceneStatus>([&](auto done) { f.runner.reset(1, done); });
+  auto fresh = f.runner.rebuild();
+  ASSERT_TRUE(fresh);
+  const auto reset =
+      await<SceneStatus>([&](auto done) { f.runner.reset(1, std::move(*fresh), done); });
   ASSERT_TRUE(reset);
   EXPECT_LT(reset->sim_time, 0.01);
   EXPECT_EQ(f.runner.bodies()->bodies.size(), 1u);
@@ -194,8 +197,7 @@ TEST(SceneRunnerRequests, ResetBuildsTheSceneAgainFromItsSource) {
   EXPECT_EQ(f.log->events().back().bodies.size(), 1u);
   SceneRunner without_source(flat_cloth_scene());
   without_source.start();
-  const auto refused = await<SceneStatus>([&](auto done) { without_source.reset(0, done); });
-  EXPECT_EQ(refused.error().code, RunnerError::Code::kWrongState);
+  EXPECT_EQ(without_source.rebuild().error().code, RunnerError::Code::kWrongState);
 }
 
 /// The total momentum of body 0 in the scene's saved state, with the cloth's masses.
