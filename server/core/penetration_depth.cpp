@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <optional>
 
 #include "core/check.hpp"
@@ -156,13 +157,11 @@ void PenetrationDepthEstimator::add_crossing_estimates(std::span<const SolidBody
               cast(bodies, collisions, penetrated, x[inside], along, 1, exclude,
                    crossing_cache_[2 * (edge_offset_[body] + e) + end]);
           if (crossing.triangle == kNone) continue;
-          const Triangle& tri = bodies[penetrated].topology().surface[crossing.triangle];
-          const std::vector<Vec3>& normals = vertex_normals_[penetrated];
-          Vec3 normal = crossing.barycentric[0] * normals[tri[0]] +
-                        crossing.barycentric[1] * normals[tri[1]] +
-                        crossing.barycentric[2] * normals[tri[2]];
+          const std::array<Vec3, 3>& normals = corner_normals_[penetrated][crossing.triangle];
+          Vec3 normal = crossing.barycentric[0] * normals[0] +
+                        crossing.barycentric[1] * normals[1] + crossing.barycentric[2] * normals[2];
           const Real norm = normal.norm();
-          if (!(norm > 0)) continue;  // opposite vertex normals cancel: no direction here
+          if (!(norm > 0)) continue;  // opposite corner normals cancel: no direction here
           normal /= norm;
           ++counts_.crossings;
 
@@ -249,6 +248,11 @@ void PenetrationDepthEstimator::propagate(std::span<const SolidBody> bodies,
   }
 }
 
+void PenetrationDepthEstimator::set_crease_angle(Real radians) {
+  FELT_CHECK(radians >= 0 && radians <= std::numbers::pi);
+  cos_crease_ = std::cos(radians);
+}
+
 void PenetrationDepthEstimator::compute(std::span<const SolidBody> bodies,
                                         const CollisionSet& collisions, Real min_depth,
                                         std::vector<PenetrationContact>& out) {
@@ -293,14 +297,16 @@ void PenetrationDepthEstimator::compute(std::span<const SolidBody> bodies,
   round_.assign(count, kNone);
   queued_round_.assign(count, kNone);
 
-  vertex_normals_.resize(bodies.size());
+  corner_normals_.resize(bodies.size());
   triangle_boxes_.resize(bodies.size());
   normals_needed_.assign(bodies.size(), 0);
   for (const CollidingNode& c : collisions.nodes) normals_needed_[c.penetrated_body] = 1;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (normals_needed_[b]) {
-      compute_vertex_normals(bodies[b].positions(), bodies[b].topology().surface,
-                             vertex_normals_[b]);
+      const TetTopology& topology = bodies[b].topology();
+      compute_corner_normals(bodies[b].positions(), topology.surface, topology.surface_face_offset,
+                             topology.surface_face_index, cos_crease_, face_normals_,
+                             corner_normals_[b]);
       compute_triangle_boxes(bodies[b], collisions.triangles[b], triangle_boxes_[b]);
     }
   }

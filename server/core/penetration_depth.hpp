@@ -3,7 +3,10 @@
 // §3.1, §3.3 a–f, Algorithm 6.3): estimated at border nodes from where their edges cross the
 // penetrated surface and propagated inward front by front, so depths do not jump over time.
 
+#include <array>
+#include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <span>
 #include <vector>
 
@@ -22,6 +25,10 @@ struct PenetrationContact {
   Vec3 barycentric = Vec3::Zero();  ///< where the ray hits that triangle
 };
 
+/// Edges of a penetrated surface that turn by more than this are sharp (60°): a box's edges
+/// are, the gentle edges of a tessellated curved surface are not.
+constexpr Real kDefaultCreaseAngle = std::numbers::pi / 3;
+
 /// What the last estimation found, for stats and diagnosis.
 struct PenetrationCounts {
   std::size_t intersection_edges = 0;  ///< (edge, inside end, penetrated body) triples
@@ -39,17 +46,24 @@ class PenetrationDepthEstimator {
   /// One contact per entry of collisions.nodes, in the same order; `collisions` must come from
   /// the detector with its triangles collected for the same bodies.
   ///
-  /// The surface normal where an edge crosses a triangle interpolates the area-weighted vertex
-  /// normals barycentrically (as Heidelberger et al. 2004 do; the thesis leaves it open), so
-  /// it varies continuously across triangles. Depths below `min_depth` (and estimates that
-  /// point the wrong way) become zero; distances in the 1/d² weights are floored at
-  /// `min_depth` so a crossing at the node itself cannot overflow them. A contact that no
-  /// estimate reaches (no border node of its region found a crossing) and a zero depth give
-  /// depth zero and no triangle.
+  /// The surface normal where an edge crosses a triangle interpolates the triangle's corner
+  /// normals barycentrically (as Heidelberger et al. 2004 do with vertex normals; the thesis
+  /// leaves it open), so it varies continuously across triangles, except across a sharp edge
+  /// (one turning by more than the crease angle): there each side keeps its own normal. With
+  /// smooth vertex normals everywhere a node near the edge of a box's face gets a vector
+  /// tilted by up to 45° toward the side face, and a stack of boxes creeps sideways on it. Depths
+  /// below `min_depth` (and estimates that point the wrong way) become zero; distances in the 1/d²
+  /// weights are floored at `min_depth` so a crossing at the node itself cannot overflow them. A
+  /// contact that no estimate reaches (no border node of its region found a crossing) and a zero
+  /// depth give depth zero and no triangle.
   void compute(std::span<const SolidBody> bodies, const CollisionSet& collisions, Real min_depth,
                std::vector<PenetrationContact>& out);
 
   const PenetrationCounts& counts() const { return counts_; }
+
+  /// Edges of the penetrated surface turning by more than `radians` are sharp (above); π makes
+  /// every edge smooth (vertex normals, as Heidelberger et al.).
+  void set_crease_angle(Real radians);
 
  private:
   static constexpr std::uint32_t kNone = ~std::uint32_t{0};
@@ -100,11 +114,14 @@ class PenetrationDepthEstimator {
   std::vector<Vec3> direction_sum_, direction_;
   std::vector<std::uint32_t> round_, queued_round_;
   std::vector<std::uint32_t> front_, next_front_;
-  std::vector<std::uint8_t> normals_needed_;       ///< per body: is it penetrated
-  std::vector<std::vector<Vec3>> vertex_normals_;  ///< per body, of the penetrated bodies
-  std::vector<TriangleBoxes> triangle_boxes_;      ///< per body, of the penetrated bodies
-  std::vector<CachedTriangle> crossing_cache_;     ///< per flat edge and inside end
-  std::vector<CachedTriangle> contact_cache_;      ///< per flat node
+  std::vector<std::uint8_t> normals_needed_;  ///< per body: is it penetrated
+  Real cos_crease_ = std::cos(kDefaultCreaseAngle);
+  /// per body, of the penetrated bodies: each surface triangle's corner normals
+  std::vector<std::vector<std::array<Vec3, 3>>> corner_normals_;
+  std::vector<Vec3> face_normals_;              ///< scratch
+  std::vector<TriangleBoxes> triangle_boxes_;   ///< per body, of the penetrated bodies
+  std::vector<CachedTriangle> crossing_cache_;  ///< per flat edge and inside end
+  std::vector<CachedTriangle> contact_cache_;   ///< per flat node
 };
 
 }  // namespace felt

@@ -5,6 +5,22 @@
 #include <utility>
 
 namespace felt {
+namespace {
+
+// A list per node as offsets and entries, from the (node, entry) pairs `each` emits: called
+// twice, to count and then to fill
+template <class Each>
+void node_lists(std::size_t node_count, Each each, std::vector<std::uint32_t>& offset,
+                std::vector<std::uint32_t>& index) {
+  offset.assign(node_count + 1, 0);
+  each([&](std::uint32_t node, std::uint32_t) { ++offset[node + 1]; });
+  for (std::size_t n = 0; n < node_count; ++n) offset[n + 1] += offset[n];
+  index.resize(offset.back());
+  std::vector<std::uint32_t> fill(offset.begin(), offset.end() - 1);
+  each([&](std::uint32_t node, std::uint32_t entry) { index[fill[node]++] = entry; });
+}
+
+}  // namespace
 
 Real signed_volume(std::span<const Vec3> x, const Tetrahedron& t) {
   return signed_volume(x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
@@ -32,21 +48,15 @@ TetTopology build_topology(const TetMesh& mesh) {
   const auto [first, last] = std::ranges::unique(topology.edges);
   topology.edges.erase(first, last);
 
-  topology.neighbour_offset.assign(node_count + 1, 0);
-  for (const Edge& e : topology.edges) {
-    ++topology.neighbour_offset[e[0] + 1];
-    ++topology.neighbour_offset[e[1] + 1];
-  }
-  for (std::uint32_t n = 0; n < node_count; ++n) {
-    topology.neighbour_offset[n + 1] += topology.neighbour_offset[n];
-  }
-  topology.neighbour_index.resize(topology.neighbour_offset.back());
-  std::vector<std::uint32_t> fill(topology.neighbour_offset.begin(),
-                                  topology.neighbour_offset.end() - 1);
-  for (const Edge& e : topology.edges) {
-    topology.neighbour_index[fill[e[0]]++] = e[1];
-    topology.neighbour_index[fill[e[1]]++] = e[0];
-  }
+  node_lists(
+      node_count,
+      [&](auto emit) {
+        for (const Edge& e : topology.edges) {
+          emit(e[0], e[1]);
+          emit(e[1], e[0]);
+        }
+      },
+      topology.neighbour_offset, topology.neighbour_index);
 
   // The outward faces of a positive tetrahedron (a, b, c, d): d lies on the normal's side of
   // (a, b, c), so that face turns round to (a, c, b), and so on.
@@ -68,6 +78,14 @@ TetTopology build_topology(const TetMesh& mesh) {
     topology.surface.push_back(face_and_count.first);
     for (std::uint32_t n : key) topology.on_surface[n] = 1;
   }
+  node_lists(
+      node_count,
+      [&](auto emit) {
+        for (std::uint32_t f = 0; f < topology.surface.size(); ++f) {
+          for (std::uint32_t corner : topology.surface[f]) emit(corner, f);
+        }
+      },
+      topology.surface_face_offset, topology.surface_face_index);
   return topology;
 }
 

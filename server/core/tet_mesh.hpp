@@ -39,10 +39,17 @@ struct TetTopology {
   std::vector<std::uint32_t> neighbour_offset;
   std::vector<std::uint32_t> neighbour_index;
   std::vector<std::uint8_t> on_surface;  ///< per node: 1 when it is a corner of a surface face
+  /// surface faces around node n: surface_face_index[surface_face_offset[n] .. [n + 1])
+  std::vector<std::uint32_t> surface_face_offset;
+  std::vector<std::uint32_t> surface_face_index;
 
   std::span<const std::uint32_t> neighbours(std::uint32_t n) const {
     return std::span(neighbour_index)
         .subspan(neighbour_offset[n], neighbour_offset[n + 1] - neighbour_offset[n]);
+  }
+  std::span<const std::uint32_t> faces_around(std::uint32_t n) const {
+    return std::span(surface_face_index)
+        .subspan(surface_face_offset[n], surface_face_offset[n + 1] - surface_face_offset[n]);
   }
 };
 

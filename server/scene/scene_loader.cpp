@@ -348,9 +348,9 @@ Scene read_scene(const json& document, const SceneLoadOptions& options) {
   settings.max_speed = root.positive("max_speed", settings.max_speed);
   SolidStepSettings solid_settings;
   if (root.has("solids")) {
-    solid_settings = read_solid_settings(
-        ObjectReader(root.at("solids"), root.path_of("solids"),
-                     {"max_step", "contact_iterations", "min_depth", "max_speed", "friction"}));
+    solid_settings = read_solid_settings(ObjectReader(
+        root.at("solids"), root.path_of("solids"),
+        {"max_step", "contact_iterations", "min_depth", "crease_angle", "max_speed", "friction"}));
   }
 
   Scene scene(root.string("name", "unnamed"), World(settings, solid_settings));

@@ -1,6 +1,7 @@
 #include "scene/solid_reader.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <utility>
 
@@ -220,6 +221,9 @@ SolidStepSettings read_solid_settings(const ObjectReader& solids) {
   s.contact_iterations =
       static_cast<int>(solids.count("contact_iterations", s.contact_iterations, 0, 16));
   s.min_depth = solids.non_negative("min_depth", s.min_depth);
+  const Real crease = solids.number("crease_angle", s.crease_angle * 180 / std::numbers::pi);
+  if (!(crease >= 0 && crease <= 180)) fail(solids.path_of("crease_angle"), "must be 0 to 180");
+  s.crease_angle = crease * std::numbers::pi / 180;
   s.max_speed = solids.positive("max_speed", s.max_speed);
   const std::string friction = solids.string("friction", "coulomb");
   if (friction == "coulomb") {

@@ -1,8 +1,13 @@
 #include "core/surface_normals.hpp"
 
+#include <cmath>
+#include <numbers>
+
 #include <gtest/gtest.h>
 
 #include "core/cloth_grid.hpp"
+#include "core/tet_lattice.hpp"
+#include "core/tet_mesh.hpp"
 
 namespace felt {
 namespace {
@@ -31,6 +36,61 @@ TEST(SurfaceNormals, ClosedSurfacePointsOutward) {
   // the corner at the origin sees three equal faces: its normal is −(1, 1, 1)/√3 weighted by
   // areas ½, ½, ½ plus the slanted face's share, which it does not touch
   EXPECT_LT((normals[0] + Vec3::Ones().normalized()).norm(), 1e-12);
+}
+
+Vec3 face_normal(std::span<const Vec3> x, const Triangle& t) {
+  return (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).normalized();
+}
+
+// A box's edges turn by 90°: with a 60° crease every corner of a face takes the face's normal,
+// so interpolation is exact up to the face's border; with 180° they are the vertex normals.
+TEST(SurfaceNormals, CornerNormalsKeepABoxsFacesFlatUpToTheirEdges) {
+  LatticeGrid grid;
+  grid.cells = {2, 3, 2};
+  const TetMesh box = make_box_lattice(grid);
+  const TetTopology topology = build_topology(box);
+  std::vector<Vec3> scratch, vertex;
+  std::vector<std::array<Vec3, 3>> sharp, smooth;
+  compute_corner_normals(box.nodes, topology.surface, topology.surface_face_offset,
+                         topology.surface_face_index, std::cos(std::numbers::pi / 3), scratch,
+                         sharp);
+  compute_corner_normals(box.nodes, topology.surface, topology.surface_face_offset,
+                         topology.surface_face_index, -1, scratch, smooth);
+  compute_vertex_normals(box.nodes, topology.surface, vertex);
+  int tilted = 0;
+  for (std::size_t f = 0; f < topology.surface.size(); ++f) {
+    const Triangle& t = topology.surface[f];
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LT((sharp[f][k] - face_normal(box.nodes, t)).norm(), 1e-12);
+      EXPECT_LT((smooth[f][k] - vertex[t[k]]).norm(), 1e-12);
+      tilted += (vertex[t[k]] - face_normal(box.nodes, t)).norm() > 0.1;
+    }
+  }
+  EXPECT_GT(tilted, 0);  // the box's edges do tilt its vertex normals
+}
+
+// Two triangles folded along their shared edge by 30°: smooth under a 60° crease (both sides'
+// corners on the fold share the vertex normal), sharp under a 20° one.
+TEST(SurfaceNormals, AGentleFoldStaysSmoothUnderTheCrease) {
+  const Real fold = 30 * std::numbers::pi / 180;
+  const std::vector<Vec3> x = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0),
+                               Vec3(-std::cos(fold), 0, -std::sin(fold))};
+  // the edge 0–2 (the y axis) is shared; the second face's normal is tilted by the fold
+  const std::vector<Triangle> t = {{0, 1, 2}, {0, 2, 3}};
+  const std::vector<std::uint32_t> offset = {0, 2, 3, 5, 6};
+  const std::vector<std::uint32_t> index = {0, 1, 0, 0, 1, 1};
+  std::vector<Vec3> scratch, vertex;
+  std::vector<std::array<Vec3, 3>> gentle, sharp;
+  compute_corner_normals(x, t, offset, index, std::cos(std::numbers::pi / 3), scratch, gentle);
+  compute_corner_normals(x, t, offset, index, std::cos(20 * std::numbers::pi / 180), scratch,
+                         sharp);
+  compute_vertex_normals(x, t, vertex);
+  for (std::size_t f = 0; f < t.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LT((gentle[f][k] - vertex[t[f][k]]).norm(), 1e-12) << f << " " << k;
+      EXPECT_LT((sharp[f][k] - face_normal(x, t[f])).norm(), 1e-12) << f << " " << k;
+    }
+  }
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 #include <array>
+#include <numbers>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -183,12 +184,17 @@ TEST(SolidReader, ParticleLimitCoversTheLattice) {
 
 TEST(SolidReader, SolidSettings) {
   json doc = cube_scene();
-  doc["solids"] = {{"max_step", 0.005}, {"contact_iterations", 4}, {"friction", "thesis"}};
+  doc["solids"] = {
+      {"max_step", 0.005}, {"contact_iterations", 4}, {"friction", "thesis"}, {"crease_angle", 90}};
   const auto scene = load_scene(doc);
   ASSERT_TRUE(scene) << scene.error().what();
   EXPECT_DOUBLE_EQ(scene->world.solids().settings().max_step, 0.005);
   EXPECT_EQ(scene->world.solids().settings().contact_iterations, 4);
   EXPECT_EQ(scene->world.solids().settings().friction, SolidFriction::kThesis);
+  EXPECT_DOUBLE_EQ(scene->world.solids().settings().crease_angle, std::numbers::pi / 2);
+  doc["solids"]["crease_angle"] = 200;
+  EXPECT_NE(error_of(doc).find("solids.crease_angle: must be 0 to 180"), std::string::npos);
+  doc["solids"]["crease_angle"] = 60;
   doc["solids"]["max_step"] = 0.02;
   EXPECT_NE(error_of(doc).find("solids.max_step: must be at most 0.015 s"), std::string::npos);
 }
