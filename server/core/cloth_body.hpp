@@ -59,6 +59,8 @@ class ClothBody final : public DynamicSystem {
   const std::string& name() const { return name_; }
   const ClothModel& model() const { return *model_; }
   const std::shared_ptr<const ClothModel>& shared_model() const { return model_; }
+  /// How many vertices clients see: the particles (as SolidBody::surface_vertex_count).
+  std::size_t surface_vertex_count() const { return model_->particle_count(); }
   const ClothParams& params() const { return params_; }
   void set_params(const ClothParams& params) { params_ = params; }
   const ParticleState& state() const { return state_; }

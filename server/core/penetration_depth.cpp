@@ -157,7 +157,8 @@ void PenetrationDepthEstimator::add_crossing_estimates(std::span<const SolidBody
               cast(bodies, collisions, penetrated, x[inside], along, 1, exclude,
                    crossing_cache_[2 * (edge_offset_[body] + e) + end]);
           if (crossing.triangle == kNone) continue;
-          const std::array<Vec3, 3>& normals = corner_normals_[penetrated][crossing.triangle];
+          const std::array<Vec3, 3>& normals =
+              corner_normals_of(bodies[penetrated], penetrated, crossing.triangle);
           Vec3 normal = crossing.barycentric[0] * normals[0] +
                         crossing.barycentric[1] * normals[1] + crossing.barycentric[2] * normals[2];
           const Real norm = normal.norm();
@@ -248,6 +249,26 @@ void PenetrationDepthEstimator::propagate(std::span<const SolidBody> bodies,
   }
 }
 
+const std::array<Vec3, 3>& PenetrationDepthEstimator::corner_normals_of(const SolidBody& body,
+                                                                        std::uint32_t b,
+                                                                        std::uint32_t triangle) {
+  NormalCache& cache = normals_[b];
+  if (cache.corner_stamp[triangle] != stamp_) {
+    const TetTopology& topology = body.topology();
+    cache.corners[triangle] = corner_normals(
+        topology.surface, triangle, topology.surface_face_offset, topology.surface_face_index,
+        cos_crease_, [&](std::uint32_t f) -> const FaceNormal& {
+          if (cache.face_stamp[f] != stamp_) {
+            cache.faces[f] = face_normal(body.positions(), topology.surface[f]);
+            cache.face_stamp[f] = stamp_;
+          }
+          return cache.faces[f];
+        });
+    cache.corner_stamp[triangle] = stamp_;
+  }
+  return cache.corners[triangle];
+}
+
 void PenetrationDepthEstimator::set_crease_angle(Real radians) {
   FELT_CHECK(radians >= 0 && radians <= std::numbers::pi);
   cos_crease_ = std::cos(radians);
@@ -297,18 +318,26 @@ void PenetrationDepthEstimator::compute(std::span<const SolidBody> bodies,
   round_.assign(count, kNone);
   queued_round_.assign(count, kNone);
 
-  corner_normals_.resize(bodies.size());
-  triangle_boxes_.resize(bodies.size());
-  normals_needed_.assign(bodies.size(), 0);
-  for (const CollidingNode& c : collisions.nodes) normals_needed_[c.penetrated_body] = 1;
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
-    if (normals_needed_[b]) {
-      const TetTopology& topology = bodies[b].topology();
-      compute_corner_normals(bodies[b].positions(), topology.surface, topology.surface_face_offset,
-                             topology.surface_face_index, cos_crease_, face_normals_,
-                             corner_normals_[b]);
-      compute_triangle_boxes(bodies[b], collisions.triangles[b], triangle_boxes_[b]);
+  normals_.resize(bodies.size());
+  if (++stamp_ == 0) {  // wrapped: no stamp may look current
+    for (NormalCache& cache : normals_) {
+      std::ranges::fill(cache.face_stamp, 0);
+      std::ranges::fill(cache.corner_stamp, 0);
     }
+    stamp_ = 1;
+  }
+  triangle_boxes_.resize(bodies.size());
+  penetrated_bodies_.assign(bodies.size(), 0);
+  for (const CollidingNode& c : collisions.nodes) penetrated_bodies_[c.penetrated_body] = 1;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (!penetrated_bodies_[b]) continue;
+    const std::size_t triangles = bodies[b].topology().surface.size();
+    NormalCache& cache = normals_[b];
+    cache.faces.resize(triangles);
+    cache.corners.resize(triangles);
+    cache.face_stamp.resize(triangles, 0);
+    cache.corner_stamp.resize(triangles, 0);
+    compute_triangle_boxes(bodies[b], collisions.triangles[b], triangle_boxes_[b]);
   }
 
   // border nodes from their intersection edges, then inward front by front

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/solid_collision_detection.hpp"
+#include "core/surface_normals.hpp"
 
 namespace felt {
 
@@ -114,11 +115,19 @@ class PenetrationDepthEstimator {
   std::vector<Vec3> direction_sum_, direction_;
   std::vector<std::uint32_t> round_, queued_round_;
   std::vector<std::uint32_t> front_, next_front_;
-  std::vector<std::uint8_t> normals_needed_;  ///< per body: is it penetrated
+  std::vector<std::uint8_t> penetrated_bodies_;  ///< per body: is it penetrated
   Real cos_crease_ = std::cos(kDefaultCreaseAngle);
-  /// per body, of the penetrated bodies: each surface triangle's corner normals
-  std::vector<std::vector<std::array<Vec3, 3>>> corner_normals_;
-  std::vector<Vec3> face_normals_;              ///< scratch
+  /// A body's face and corner normals, each computed when a crossing first needs it in a
+  /// compute (its stamp equals stamp_ then): few triangles are crossed in a step.
+  struct NormalCache {
+    std::vector<FaceNormal> faces;
+    std::vector<std::array<Vec3, 3>> corners;
+    std::vector<std::uint32_t> face_stamp, corner_stamp;
+  };
+  std::vector<NormalCache> normals_;  ///< per body
+  std::uint32_t stamp_ = 0;
+  const std::array<Vec3, 3>& corner_normals_of(const SolidBody& body, std::uint32_t b,
+                                               std::uint32_t triangle);
   std::vector<TriangleBoxes> triangle_boxes_;   ///< per body, of the penetrated bodies
   std::vector<CachedTriangle> crossing_cache_;  ///< per flat edge and inside end
   std::vector<CachedTriangle> contact_cache_;   ///< per flat node

@@ -15,16 +15,38 @@ namespace felt {
 void compute_vertex_normals(std::span<const Vec3> positions, std::span<const Triangle> triangles,
                             std::vector<Vec3>& normals);
 
-/// Per corner of each triangle, the unit sum of the area-weighted normals of the triangles
-/// around that corner whose normals turn from the triangle's own by at most the crease angle
-/// (`cos_crease` its cosine): the vertex normal across gentle edges, the face's own normal on
-/// either side of a sharp one, so interpolating them over a flat face gives its normal up to
-/// its border. face_index[face_offset[v] .. [v + 1]) are the triangles with corner v;
-/// `face_normals` receives their area-weighted normals.
-void compute_corner_normals(std::span<const Vec3> positions, std::span<const Triangle> triangles,
-                            std::span<const std::uint32_t> face_offset,
-                            std::span<const std::uint32_t> face_index, Real cos_crease,
-                            std::vector<Vec3>& face_normals,
-                            std::vector<std::array<Vec3, 3>>& corner_normals);
+/// A triangle's normal weighted by its area (the plain cross product) and as a unit vector.
+struct FaceNormal {
+  Vec3 area = Vec3::Zero();
+  Vec3 unit = Vec3::Zero();  ///< zero for a triangle without area
+};
+
+FaceNormal face_normal(std::span<const Vec3> positions, const Triangle& triangle);
+
+/// The normals at the corners of triangle `f`: for each corner, the unit sum of the
+/// area-weighted normals of the triangles around it whose normals turn from f's by at most the
+/// crease angle (`cos_crease` its cosine). Across gentle edges these are the vertex normals;
+/// on either side of a sharp edge each face keeps its own normal, so interpolating them over a
+/// flat face gives its normal up to its border. face_index[face_offset[v] .. [v + 1]) are the
+/// triangles with corner v; normal_of(g) gives triangle g's FaceNormal.
+template <class NormalOf>
+std::array<Vec3, 3> corner_normals(std::span<const Triangle> triangles, std::uint32_t f,
+                                   std::span<const std::uint32_t> face_offset,
+                                   std::span<const std::uint32_t> face_index, Real cos_crease,
+                                   NormalOf&& normal_of) {
+  const Vec3 own = normal_of(f).unit;
+  std::array<Vec3, 3> out;
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t v = triangles[f][k];
+    Vec3 sum = Vec3::Zero();
+    for (std::uint32_t i = face_offset[v]; i < face_offset[v + 1]; ++i) {
+      const FaceNormal& other = normal_of(face_index[i]);
+      if (own.dot(other.unit) >= cos_crease) sum += other.area;
+    }
+    const Real norm = sum.norm();
+    out[k] = norm > 0 ? Vec3(sum / norm) : own;
+  }
+  return out;
+}
 
 }  // namespace felt

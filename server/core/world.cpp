@@ -145,7 +145,7 @@ const SolidBody* World::solid(BodyId id) const {
 }
 
 std::size_t World::surface_vertex_count(BodyId id) const {
-  if (const ClothBody* body = cloth(id)) return body->model().particle_count();
+  if (const ClothBody* body = cloth(id)) return body->surface_vertex_count();
   const SolidBody* solid_body = solid(id);
   return solid_body ? solid_body->surface_vertex_count() : 0;
 }

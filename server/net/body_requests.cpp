@@ -236,9 +236,7 @@ void handle_apply_force(Session& session, std::uint64_t id, const v1::ApplyForce
   };
   if (body->kind == "collider") return bad("a collider does not move");
   if (push.vertices().empty()) return bad("name at least one vertex");
-  std::vector<std::uint32_t> vertices(push.vertices().begin(), push.vertices().end());
-  std::sort(vertices.begin(), vertices.end());
-  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  std::vector<std::uint32_t> vertices = sorted_unique(push.vertices());
   if (vertices.back() >= body->particles) {
     return bad("vertex " + std::to_string(vertices.back()) + " out of range (the body has " +
                std::to_string(body->particles) + ")");

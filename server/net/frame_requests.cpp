@@ -25,9 +25,7 @@ void handle_subscribe(Session& session, std::uint64_t id, const v1::SubscribeFra
   if (subscribe.deltas() && !quantized) {
     return bad(v1::ERROR_CODE_BAD_REQUEST, "deltas need the QUANTIZED16 encoding");
   }
-  std::vector<BodyId> wanted(subscribe.body_ids().begin(), subscribe.body_ids().end());
-  std::sort(wanted.begin(), wanted.end());
-  wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+  std::vector<BodyId> wanted = sorted_unique(subscribe.body_ids());
   const auto bodies = session.scene()->bodies();
   for (BodyId body : wanted) {
     if (!bodies->find(body)) {

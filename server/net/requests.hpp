@@ -3,8 +3,10 @@
 // haptics, frames), and what they share. Each answers its request with one reply or Error,
 // now or through a PendingReply.
 
+#include <algorithm>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "felt/v1/envelope.pb.h"
 #include "net/session.hpp"
@@ -63,6 +65,15 @@ void reply(Session& session, std::uint64_t id, Fill&& fill) {
   message.set_request_id(id);
   fill(message);
   session.send(message);
+}
+
+/// The ids a request lists, sorted, each once.
+template <class Repeated>
+std::vector<std::uint32_t> sorted_unique(const Repeated& ids) {
+  std::vector<std::uint32_t> out(ids.begin(), ids.end());
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
 }
 
 /// A reply deferred past the session's turn, or null after answering LIMIT_EXCEEDED.

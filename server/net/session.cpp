@@ -93,8 +93,7 @@ void Session::start() {
 void Session::reject(v1::ErrorCode code, const std::string& message) {
   asio::dispatch(socket_.get_executor(), [self = shared_from_this(), code, message] {
     self->send_error(0, code, message);
-    self->closing_ = true;
-    self->write_next();
+    self->close_after_replies();
   });
 }
 
@@ -162,24 +161,20 @@ void Session::process() {
       send_error(0, v1::ERROR_CODE_FRAME_TOO_LARGE,
                  "frame of " + std::to_string(frame.announced_length) +
                      " bytes exceeds the limit of " + std::to_string(decoder_.max_frame_bytes()));
-      closing_ = true;  // flush the error, then the write path closes the socket
+      close_after_replies();  // the error goes out, then the write path closes the socket
       break;
     }
     v1::ClientMessage message;
     if (frame.status == wire::DecodeStatus::kBadPrefix ||
         !wire::parse_message(frame.payload, message)) {
       send_error(0, v1::ERROR_CODE_MALFORMED_FRAME, "bytes that are not a felt.v1.ClientMessage");
-      closing_ = true;
+      close_after_replies();
       break;
     }
     ++counters_.requests;
     dispatch(*this, message);
   }
-  if (closed_) return;
-  if (closing_) {
-    if (!writing_) shutdown();
-    return;
-  }
+  if (closed_ || closing_) return;
   read();
 }
 

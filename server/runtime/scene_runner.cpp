@@ -29,11 +29,6 @@ RunnerError error(RunnerError::Code code, std::string message) {
   return RunnerError{code, std::move(message)};
 }
 
-std::size_t visible_particles(const SceneBody& body) {
-  if (const auto* cloth = std::get_if<ClothBody>(&body)) return cloth->model().particle_count();
-  return std::get<SolidBody>(body).surface_vertex_count();
-}
-
 }  // namespace
 
 SceneRunner::SceneRunner(Scene scene, SceneAccess access, SceneReloader reload, SceneLimits limits)
@@ -281,7 +276,8 @@ void SceneRunner::add_body(ClientId by, SceneBody body, Completion<BodyInfo> don
       std::move(done), [this, by, shared_body](Scene& scene, Completion<BodyInfo>& done) {
         if (!room_for_body(done)) return;
         const std::uint64_t used = bodies()->particles();
-        const std::uint64_t particles = visible_particles(*shared_body);
+        const std::uint64_t particles =
+            std::visit([](const auto& b) { return b.surface_vertex_count(); }, *shared_body);
         if (used + particles > limits_.max_particles) {
           done(std::unexpected(error(RunnerError::Code::kLimitExceeded,
                                      std::to_string(particles) + " particles exceed the " +
