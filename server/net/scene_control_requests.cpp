@@ -68,16 +68,17 @@ void handle_time_scale(Session& session, std::uint64_t id, const v1::SetTimeScal
 }
 
 void handle_reset(Session& session, std::uint64_t id) {
-  if (!may_control(session, id)) return;
-  auto pending = defer_or_refuse(session, id);
-  if (!pending) return;
-  // built again on the loader thread: the scene keeps stepping until the new one is in
-  boost::asio::post(session.context().loader, [scene = session.scene(), by = session.client_id(),
-                                               done = answer_status(pending, session.scene_id())] {
-    auto fresh = scene->rebuild();
-    if (!fresh) return done(std::unexpected(fresh.error()));
-    scene->reset(by, std::move(*fresh), done);
-  });
+  control(session, id,
+          [&context = session.context(), runner = session.scene()](SceneRunner& scene, ClientId by,
+                                                                   Completion<SceneStatus> done) {
+            // built again on the loader thread: the scene steps on until the new one is in
+            scene.reset(
+                by,
+                [&context, runner](std::function<void()> job) {
+                  boost::asio::post(context.loader, [runner, job = std::move(job)] { job(); });
+                },
+                std::move(done));
+          });
 }
 
 void handle_save_state(Session& session, std::uint64_t id, const v1::SaveState& save) {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <mutex>
+#include <optional>
 
 namespace felt {
 namespace {
@@ -85,20 +87,27 @@ bool SceneRunner::may_control(ClientId client) const {
   return access_.shared || access_.owner == client || !members_.contains(access_.owner);
 }
 
-void SceneRunner::post(SceneCommand command, std::function<void()> cancel) {
-  commands_.push(std::move(command), std::move(cancel));
-  // taking the lock orders the push before the physics thread's check of the queue
+void SceneRunner::post(SceneCommand command, std::function<void()> cancel,
+                       std::function<bool()> ready) {
+  commands_.push(std::move(command), std::move(cancel), std::move(ready));
+  wake();
+}
+
+void SceneRunner::wake() {
+  // taking the lock orders what changed before the physics thread's check of the queue
   { std::lock_guard lock(wake_mutex_); }
   wake_.notify_all();
 }
 
 template <class T>
-void SceneRunner::request(Completion<T> done, std::function<void(Scene&, Completion<T>&)> run) {
+void SceneRunner::request(Completion<T> done, std::function<void(Scene&, Completion<T>&)> run,
+                          std::function<bool()> ready) {
   auto shared = std::make_shared<Completion<T>>(std::move(done));
   post([shared, run = std::move(run)](Scene& scene) { run(scene, *shared); },
        [shared] {
          (*shared)(std::unexpected(error(RunnerError::Code::kCancelled, "the scene was stopped")));
-       });
+       },
+       std::move(ready));
 }
 
 SceneEvent SceneRunner::event(SceneEvent::Kind kind, ClientId by) const {
@@ -178,24 +187,48 @@ std::expected<Scene, RunnerError> SceneRunner::rebuild() const {
   return std::move(*fresh);
 }
 
-void SceneRunner::reset(ClientId by, Scene fresh, Completion<SceneStatus> done) {
-  auto shared_fresh = std::make_shared<Scene>(std::move(fresh));
-  request<SceneStatus>(std::move(done), [this, by, shared_fresh](Scene& scene,
-                                                                 Completion<SceneStatus>& done) {
-    for (StepRequest& pending : step_requests_) {
-      pending.done(std::unexpected(error(RunnerError::Code::kCancelled, "the scene was reset")));
+void SceneRunner::reset(ClientId by, const std::function<void(std::function<void()>)>& build_on,
+                        Completion<SceneStatus> done) {
+  struct Rebuilt {
+    std::mutex mutex;
+    std::optional<std::expected<Scene, RunnerError>> scene;
+  };
+  auto rebuilt = std::make_shared<Rebuilt>();
+  request<SceneStatus>(
+      std::move(done),
+      [this, by, rebuilt](Scene& scene, Completion<SceneStatus>& done) {
+        std::expected<Scene, RunnerError> fresh = [&] {
+          std::lock_guard lock(rebuilt->mutex);
+          return std::move(*rebuilt->scene);
+        }();
+        if (!fresh) return done(std::unexpected(fresh.error()));
+        for (StepRequest& pending : step_requests_) {
+          pending.done(
+              std::unexpected(error(RunnerError::Code::kCancelled, "the scene was reset")));
+        }
+        step_requests_.clear();
+        fresh->world.continue_ids_from(scene.world);
+        scene.world = std::move(fresh->world);
+        own_scene_bodies();
+        timed_forces_.clear();
+        resync_ = true;
+        publish_bodies();
+        SceneEvent e = event(SceneEvent::Kind::kReset, by);
+        e.bodies = bodies()->bodies;
+        members_.broadcast(std::move(e));
+        done(status());
+      },
+      [rebuilt] {
+        std::lock_guard lock(rebuilt->mutex);
+        return rebuilt->scene.has_value();
+      });
+  build_on([this, rebuilt] {
+    auto fresh = rebuild();
+    {
+      std::lock_guard lock(rebuilt->mutex);
+      rebuilt->scene = std::move(fresh);
     }
-    step_requests_.clear();
-    shared_fresh->world.continue_ids_from(scene.world);
-    scene.world = std::move(shared_fresh->world);
-    own_scene_bodies();
-    timed_forces_.clear();
-    resync_ = true;
-    publish_bodies();
-    SceneEvent e = event(SceneEvent::Kind::kReset, by);
-    e.bodies = bodies()->bodies;
-    members_.broadcast(std::move(e));
-    done(status());
+    wake();
   });
 }
 
@@ -547,7 +580,7 @@ void SceneRunner::run(std::stop_token stop) {
                              : origin + std::chrono::duration_cast<Clock::duration>(
                                             Seconds((world.time() + h) / time_scale_));
     std::unique_lock lock(wake_mutex_);
-    wake_.wait_until(lock, stop, due, [this] { return !commands_.empty(); });
+    wake_.wait_until(lock, stop, due, [this] { return !commands_.idle(); });
   }
   report_health(true);
 }

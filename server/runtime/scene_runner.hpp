@@ -109,7 +109,8 @@ class SceneRunner {
 
   /// Queues a change, applied before the next step; `cancel` runs instead if the scene stops
   /// first.
-  void post(SceneCommand command, std::function<void()> cancel = {});
+  void post(SceneCommand command, std::function<void()> cancel = {},
+            std::function<bool()> ready = {});
 
   // Requests answered through a completion once the physics thread has carried them out.
   // `by` is the client asking; the other clients in the scene hear of it as an event.
@@ -119,11 +120,12 @@ class SceneRunner {
   void step(ClientId by, std::uint32_t steps, Completion<SceneStatus> done);
   /// Simulated seconds per wall second while running, (0, 100].
   void set_time_scale(ClientId by, double scale, Completion<SceneStatus> done);
-  /// Builds the scene again from its source, on the calling thread (a loader's: building can
-  /// take long, and the scene keeps stepping meanwhile). Safe from any thread.
-  std::expected<Scene, RunnerError> rebuild() const;
-  /// Replaces the scene with `fresh`, from rebuild: bodies added since are gone, time is 0.
-  void reset(ClientId by, Scene fresh, Completion<SceneStatus> done);
+  /// Builds the scene again from its source, as a job given to `build_on` (a loader thread:
+  /// building can take long, and the scene steps on meanwhile), and swaps it in at the
+  /// request's place among the others: the requests after it wait for it. Bodies added since
+  /// are gone, time is 0. `build_on` must keep the runner alive until the job has run.
+  void reset(ClientId by, const std::function<void(std::function<void()>)>& build_on,
+             Completion<SceneStatus> done);
   /// Keeps the state (the latest kMaxSavedStates saves) and returns it.
   void save_state(ClientId by, Completion<SavedState> done);
   void restore_state(ClientId by, std::uint32_t state_id, Completion<SceneStatus> done);
@@ -190,7 +192,11 @@ class SceneRunner {
   SceneStatus status() const;
   /// Queues `run`; its completion gets kCancelled if the scene stops first.
   template <class T>
-  void request(Completion<T> done, std::function<void(Scene&, Completion<T>&)> run);
+  void request(Completion<T> done, std::function<void(Scene&, Completion<T>&)> run,
+               std::function<bool()> ready = {});
+  /// Wakes the physics thread to look at its commands.
+  void wake();
+  std::expected<Scene, RunnerError> rebuild() const;
   SceneEvent event(SceneEvent::Kind kind, ClientId by) const;
   /// Whether the scene may have one more body (answers kLimitExceeded otherwise).
   bool room_for_body(Completion<BodyInfo>& done);

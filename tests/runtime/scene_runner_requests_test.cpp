@@ -1,6 +1,10 @@
 // Requests a scene carries out between steps: pause, step, time scale, reset, save and restore,
 // adding and removing bodies, forces; and what the other clients hear of them.
 
+#include <atomic>
+#include <functional>
+#include <thread>
+
 #include <gtest/gtest.h>
 
 #include "core/state_hash.hpp"
@@ -65,16 +69,21 @@ TEST(SceneRunnerRequests, APausedSceneTakesExactlyTheStepsAskedFor) {
 // what clients see: not for pausing again, a time scale, pins, forces or saving its state.
 TEST(SceneRunnerRequests, APausedScenePublishesOnlyVisibleChanges) {
   Fixture f;
+  // a paused loop carries out a request pushed after an earlier one's completion in a later
+  // turn, after the earlier turn's publication (if any)
+  const auto later_turn = [&] {
+    return await<SavedState>([&](auto done) { f.runner.save_state(1, done); }).has_value();
+  };
   ASSERT_TRUE(await<SceneStatus>([&](auto done) { f.runner.pause(1, done); }));
-  std::this_thread::sleep_for(20ms);  // the pausing turn of the loop has ended
+  ASSERT_TRUE(later_turn());
   const std::uint64_t version = f.runner.latest()->version;
   ASSERT_TRUE(await<SceneStatus>([&](auto done) { f.runner.pause(1, done); }));
   ASSERT_TRUE(await<SceneStatus>([&](auto done) { f.runner.set_time_scale(1, 0.5, done); }));
   ASSERT_TRUE(
       await<BodyId>([&](auto done) { f.runner.apply_force(1, 0, {0}, Vec3(0, 1, 0), 1.0, done); }));
   f.runner.change_body(1, 0, [](World& world) { world.cloth(0)->pin(5); });
-  ASSERT_TRUE(await<SavedState>([&](auto done) { f.runner.save_state(1, done); }));
-  std::this_thread::sleep_for(20ms);
+  ASSERT_TRUE(later_turn());
+  ASSERT_TRUE(later_turn());
   EXPECT_EQ(f.runner.latest()->version, version);
   ASSERT_TRUE(await<BodyInfo>([&](auto done) { f.runner.add_body(1, another_cloth(), done); }));
   EXPECT_GT(f.runner.latest()->version, version);
@@ -182,14 +191,16 @@ TEST(SceneRunnerRequests, TheBodyAndParticleLimitsHold) {
   runner.stop();
 }
 
+/// Runs a reset's rebuild at once, on the calling thread.
+void build_here(std::function<void()> job) {
+  job();
+}
+
 TEST(SceneRunnerRequests, ResetBuildsTheSceneAgainFromItsSource) {
   Fixture f;
   ASSERT_TRUE(await<BodyInfo>([&](auto done) { f.runner.add_body(1, another_cloth(), done); }));
   ASSERT_TRUE(wait_for([&] { return f.runner.latest()->sim_time > 0.1; }));
-  auto fresh = f.runner.rebuild();
-  ASSERT_TRUE(fresh);
-  const auto reset =
-      await<SceneStatus>([&](auto done) { f.runner.reset(1, std::move(*fresh), done); });
+  const auto reset = await<SceneStatus>([&](auto done) { f.runner.reset(1, build_here, done); });
   ASSERT_TRUE(reset);
   EXPECT_LT(reset->sim_time, 0.01);
   EXPECT_EQ(f.runner.bodies()->bodies.size(), 1u);
@@ -197,7 +208,39 @@ TEST(SceneRunnerRequests, ResetBuildsTheSceneAgainFromItsSource) {
   EXPECT_EQ(f.log->events().back().bodies.size(), 1u);
   SceneRunner without_source(flat_cloth_scene());
   without_source.start();
-  EXPECT_EQ(without_source.rebuild().error().code, RunnerError::Code::kWrongState);
+  const auto refused =
+      await<SceneStatus>([&](auto done) { without_source.reset(0, build_here, done); });
+  EXPECT_EQ(refused.error().code, RunnerError::Code::kWrongState);
+}
+
+// The rebuild happens elsewhere while the scene steps on, and the reset keeps its place among
+// the requests: a pause sent after it is carried out after it, on the fresh scene.
+TEST(SceneRunnerRequests, AResetKeepsItsPlaceWhileItsSceneIsRebuilt) {
+  Fixture f;
+  ASSERT_TRUE(wait_for([&] { return f.runner.latest()->sim_time > 0.1; }));
+  std::jthread builder;
+  std::atomic<bool> building = false;
+  Awaited<SceneStatus> reset, paused;
+  f.runner.reset(
+      1,
+      [&](std::function<void()> job) {
+        building = true;
+        builder = std::jthread([&, job = std::move(job)] {
+          std::this_thread::sleep_for(300ms);
+          building = false;
+          job();
+        });
+      },
+      reset.completion());
+  f.runner.pause(1, paused.completion());
+  const std::uint64_t before = f.runner.latest()->step;
+  ASSERT_TRUE(wait_for([&] { return f.runner.latest()->step > before + 5; }));
+  EXPECT_TRUE(building) << "the scene stepped only after its rebuild";
+  ASSERT_TRUE(reset.get());
+  const auto status = paused.get();
+  ASSERT_TRUE(status);
+  EXPECT_TRUE(status->paused);
+  EXPECT_LT(status->sim_time, 0.01) << "the pause overtook the reset";
 }
 
 /// The total momentum of body 0 in the scene's saved state, with the cloth's masses.
@@ -207,6 +250,21 @@ Vec3 momentum(SceneRunner& runner, const std::vector<Real>& mass) {
   const std::vector<Vec3>& v = saved->state->bodies.at(0).velocities;
   for (std::size_t i = 0; i < v.size(); ++i) p += mass[i] * v[i];
   return p;
+}
+
+// A reset whose scene is still being rebuilt when the scene stops is cancelled, and so is
+// every request waiting behind it.
+TEST(SceneRunnerRequests, AResetStillBeingBuiltIsCancelledWithTheSceneStop) {
+  Fixture f;
+  std::function<void()> never_run;
+  Awaited<SceneStatus> reset, paused;
+  f.runner.reset(
+      1, [&](std::function<void()> job) { never_run = std::move(job); }, reset.completion());
+  f.runner.pause(1, paused.completion());
+  std::this_thread::sleep_for(20ms);
+  f.runner.stop();
+  EXPECT_EQ(reset.get().error().code, RunnerError::Code::kCancelled);
+  EXPECT_EQ(paused.get().error().code, RunnerError::Code::kCancelled);
 }
 
 TEST(SceneRunnerRequests, AForceGivesTheImpulseOfItsDurationAndThenStops) {
