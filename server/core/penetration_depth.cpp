@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <optional>
 
 #include "core/check.hpp"
@@ -257,7 +256,7 @@ const std::array<Vec3, 3>& PenetrationDepthEstimator::corner_normals_of(const So
     const TetTopology& topology = body.topology();
     cache.corners[triangle] = corner_normals(
         topology.surface, triangle, topology.surface_face_offset, topology.surface_face_index,
-        cos_crease_, [&](std::uint32_t f) -> const FaceNormal& {
+        cache.cos_crease, [&](std::uint32_t f) -> const FaceNormal& {
           if (cache.face_stamp[f] != stamp_) {
             cache.faces[f] = face_normal(body.positions(), topology.surface[f]);
             cache.face_stamp[f] = stamp_;
@@ -267,11 +266,6 @@ const std::array<Vec3, 3>& PenetrationDepthEstimator::corner_normals_of(const So
     cache.corner_stamp[triangle] = stamp_;
   }
   return cache.corners[triangle];
-}
-
-void PenetrationDepthEstimator::set_crease_angle(Real radians) {
-  FELT_CHECK(radians >= 0 && radians <= std::numbers::pi);
-  cos_crease_ = std::cos(radians);
 }
 
 void PenetrationDepthEstimator::compute(std::span<const SolidBody> bodies,
@@ -337,6 +331,7 @@ void PenetrationDepthEstimator::compute(std::span<const SolidBody> bodies,
     cache.corners.resize(triangles);
     cache.face_stamp.resize(triangles, 0);
     cache.corner_stamp.resize(triangles, 0);
+    cache.cos_crease = std::cos(bodies[b].material().crease_angle);
     compute_triangle_boxes(bodies[b], collisions.triangles[b], triangle_boxes_[b]);
   }
 

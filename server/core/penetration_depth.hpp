@@ -4,9 +4,7 @@
 // penetrated surface and propagated inward front by front, so depths do not jump over time.
 
 #include <array>
-#include <cmath>
 #include <cstdint>
-#include <numbers>
 #include <span>
 #include <vector>
 
@@ -25,10 +23,6 @@ struct PenetrationContact {
   std::int64_t triangle = -1;
   Vec3 barycentric = Vec3::Zero();  ///< where the ray hits that triangle
 };
-
-/// Edges of a penetrated surface that turn by more than this are sharp (60°): a box's edges
-/// are, the gentle edges of a tessellated curved surface are not.
-constexpr Real kDefaultCreaseAngle = std::numbers::pi / 3;
 
 /// What the last estimation found, for stats and diagnosis.
 struct PenetrationCounts {
@@ -50,7 +44,8 @@ class PenetrationDepthEstimator {
   /// The surface normal where an edge crosses a triangle interpolates the triangle's corner
   /// normals barycentrically (as Heidelberger et al. 2004 do with vertex normals; the thesis
   /// leaves it open), so it varies continuously across triangles, except across a sharp edge
-  /// (one turning by more than the crease angle): there each side keeps its own normal. With
+  /// (one turning by more than the penetrated body's SolidMaterial::crease_angle): there each
+  /// side keeps its own normal. With
   /// smooth vertex normals everywhere a node near the edge of a box's face gets a vector
   /// tilted by up to 45° toward the side face, and a stack of boxes creeps sideways on it. Depths
   /// below `min_depth` (and estimates that point the wrong way) become zero; distances in the 1/d²
@@ -61,10 +56,6 @@ class PenetrationDepthEstimator {
                std::vector<PenetrationContact>& out);
 
   const PenetrationCounts& counts() const { return counts_; }
-
-  /// Edges of the penetrated surface turning by more than `radians` are sharp (above); π makes
-  /// every edge smooth (vertex normals, as Heidelberger et al.).
-  void set_crease_angle(Real radians);
 
  private:
   static constexpr std::uint32_t kNone = ~std::uint32_t{0};
@@ -116,13 +107,13 @@ class PenetrationDepthEstimator {
   std::vector<std::uint32_t> round_, queued_round_;
   std::vector<std::uint32_t> front_, next_front_;
   std::vector<std::uint8_t> penetrated_bodies_;  ///< per body: is it penetrated
-  Real cos_crease_ = std::cos(kDefaultCreaseAngle);
   /// A body's face and corner normals, each computed when a crossing first needs it in a
   /// compute (its stamp equals stamp_ then): few triangles are crossed in a step.
   struct NormalCache {
     std::vector<FaceNormal> faces;
     std::vector<std::array<Vec3, 3>> corners;
     std::vector<std::uint32_t> face_stamp, corner_stamp;
+    Real cos_crease = 0;  ///< of the body's crease angle
   };
   std::vector<NormalCache> normals_;  ///< per body
   std::uint32_t stamp_ = 0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <type_traits>
 #include <variant>
 
@@ -129,6 +130,7 @@ SolidBody& SolidBody::operator=(SolidBody&&) noexcept = default;
 
 void SolidBody::set_material(const SolidMaterial& material) {
   FELT_CHECK(material.node_mass > 0 && material.friction >= 0);
+  FELT_CHECK(material.crease_angle >= 0 && material.crease_angle <= std::numbers::pi);
   material_ = material;
   // a new model starts from the rest shape again (a shape-matching body forgets its plastic flow)
   model_state_ = std::make_unique<ModelState>(

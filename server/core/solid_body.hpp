@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <span>
 #include <string>
@@ -56,11 +57,18 @@ struct FemMaterial {
   Real damping = 0;  ///< stiffness-proportional Rayleigh damping, s
 };
 
+/// The default SolidMaterial::crease_angle, 60°: a box's 90° edges are sharp, the gentle edges
+/// of a tessellated curved surface are not.
+constexpr Real kDefaultCreaseAngle = std::numbers::pi / 3;
+
 struct SolidMaterial {
   SolidModel model = SolidModel::kMassSpring;
   Real node_mass = 1;   ///< kg per node (Table B.1 "Mass")
   Real friction = 0.5;  ///< Coulomb μ at contacts with other bodies and colliders
   bool self_collision = false;
+  /// rad; edges of the body's surface that turn by more are sharp for the penetration vectors
+  /// of nodes inside it (penetration_depth.hpp): a box's are, a smooth shape's are not
+  Real crease_angle = kDefaultCreaseAngle;
   MassSpringMaterial mass_spring;
   ShapeMatchingMaterial shape_matching;
   FemMaterial fem;

@@ -38,7 +38,6 @@ void SolidSystem::remove_body(std::uint32_t index) {
   bodies_.erase(bodies_.begin() + index);
   detector_ = SolidCollisionDetector();
   penetration_ = PenetrationDepthEstimator();
-  penetration_.set_crease_angle(settings_.crease_angle);
   contact_surface_ = ContactSurface();
   collisions_ = CollisionSet();
   contacts_.clear();
@@ -52,7 +51,6 @@ void SolidSystem::set_settings(const SolidStepSettings& settings) {
   FELT_CHECK(settings.min_depth >= 0);
   FELT_CHECK(settings.max_speed > 0);
   settings_ = settings;
-  penetration_.set_crease_angle(settings.crease_angle);
 }
 
 const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,

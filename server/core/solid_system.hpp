@@ -19,8 +19,6 @@ struct SolidStepSettings {
   Real max_step = 0.015;       ///< s, the thesis's cap on the adaptive step
   int contact_iterations = 3;  ///< pressure comparisons after the first half step (§3.3 h)
   Real min_depth = 1e-6;       ///< m; shallower penetration depths are taken as zero (§3.3 e)
-  /// rad; sharper edges of a penetrated surface keep a normal per side (penetration_depth.hpp)
-  Real crease_angle = kDefaultCreaseAngle;
   SolidFriction friction = SolidFriction::kRelativeCoulomb;  ///< between bodies
   /// m/s; a node faster than this after a step is taken as an exploding state
   Real max_speed = 100;

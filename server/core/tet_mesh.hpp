@@ -47,10 +47,6 @@ struct TetTopology {
     return std::span(neighbour_index)
         .subspan(neighbour_offset[n], neighbour_offset[n + 1] - neighbour_offset[n]);
   }
-  std::span<const std::uint32_t> faces_around(std::uint32_t n) const {
-    return std::span(surface_face_index)
-        .subspan(surface_face_offset[n], surface_face_offset[n + 1] - surface_face_offset[n]);
-  }
 };
 
 /// Builds the topology of a mesh whose tetrahedra are positively oriented.

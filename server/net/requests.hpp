@@ -69,8 +69,8 @@ void reply(Session& session, std::uint64_t id, Fill&& fill) {
 
 /// The ids a request lists, sorted, each once.
 template <class Repeated>
-std::vector<std::uint32_t> sorted_unique(const Repeated& ids) {
-  std::vector<std::uint32_t> out(ids.begin(), ids.end());
+std::vector<typename Repeated::value_type> sorted_unique(const Repeated& ids) {
+  std::vector<typename Repeated::value_type> out(ids.begin(), ids.end());
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;

@@ -318,10 +318,11 @@ SceneBody read_body(const json& entry, const std::string& path, std::size_t inde
     return read_cloth(body, index, options, particles_left);
   }
   if (type && *type == "solid") {
-    const ObjectReader body(entry, path,
-                            {"name", "type", "lattice", "mesh", "tetgen", "torus", "sphere",
-                             "transform", "model", "node_mass", "friction", "self_collision",
-                             "mass_spring", "shape_matching", "fem", "pin", "integrator"});
+    const ObjectReader body(
+        entry, path,
+        {"name", "type", "lattice", "mesh", "tetgen", "torus", "sphere", "transform", "model",
+         "node_mass", "friction", "self_collision", "crease_angle", "mass_spring", "shape_matching",
+         "fem", "pin", "integrator"});
     return read_solid(body, index, options.asset_root, time_step, particles_left);
   }
   fail(child(path, "type"), "must be \"cloth\" or \"solid\"");
@@ -348,9 +349,9 @@ Scene read_scene(const json& document, const SceneLoadOptions& options) {
   settings.max_speed = root.positive("max_speed", settings.max_speed);
   SolidStepSettings solid_settings;
   if (root.has("solids")) {
-    solid_settings = read_solid_settings(ObjectReader(
-        root.at("solids"), root.path_of("solids"),
-        {"max_step", "contact_iterations", "min_depth", "crease_angle", "max_speed", "friction"}));
+    solid_settings = read_solid_settings(
+        ObjectReader(root.at("solids"), root.path_of("solids"),
+                     {"max_step", "contact_iterations", "min_depth", "max_speed", "friction"}));
   }
 
   Scene scene(root.string("name", "unnamed"), World(settings, solid_settings));

@@ -22,6 +22,9 @@ constexpr Real kMaxSubsteps = 2000;
 struct SolidShape {
   TetMesh lattice;
   std::optional<EmbeddedSurface> surface;
+  /// a voxelized lattice: its surface is a staircase standing for a smooth one, whose steps'
+  /// 90° edges should not count as sharp
+  bool voxelized = false;
 };
 
 /// Checks a lattice of up to `cells` cells per axis against the particle limit before any
@@ -33,7 +36,7 @@ void take_lattice(const std::string& path, std::uint32_t cells, std::size_t& par
 
 SolidShape embedded(const TriangleMesh& surface, std::uint32_t resolution) {
   EmbeddedSolid solid = voxelize_surface(surface, static_cast<int>(resolution));
-  return {std::move(solid.lattice), std::move(solid.surface)};
+  return {std::move(solid.lattice), std::move(solid.surface), true};
 }
 
 SolidShape read_shape(const ObjectReader& body, const std::filesystem::path& asset_root,
@@ -182,8 +185,12 @@ SolidBody read_solid(const ObjectReader& body, std::size_t index,
   const Transform transform = read_transform(body);
   for (Vec3& x : shape.lattice.nodes) x = transform.apply(x);
   // a rotation and positive scales keep every tetrahedron positive
+  SolidMaterial material = read_material(body);
+  const Real crease = body.number("crease_angle", shape.voxelized ? 180 : 60);
+  if (!(crease >= 0 && crease <= 180)) fail(body.path_of("crease_angle"), "must be 0 to 180");
+  material.crease_angle = crease * std::numbers::pi / 180;
   SolidBody solid(body.string("name", "solid" + std::to_string(index)), std::move(shape.lattice),
-                  read_material(body));
+                  material);
   if (shape.surface) {
     solid.set_embedded_surface(std::make_shared<const EmbeddedSurface>(std::move(*shape.surface)));
   }
@@ -221,9 +228,6 @@ SolidStepSettings read_solid_settings(const ObjectReader& solids) {
   s.contact_iterations =
       static_cast<int>(solids.count("contact_iterations", s.contact_iterations, 0, 16));
   s.min_depth = solids.non_negative("min_depth", s.min_depth);
-  const Real crease = solids.number("crease_angle", s.crease_angle * 180 / std::numbers::pi);
-  if (!(crease >= 0 && crease <= 180)) fail(solids.path_of("crease_angle"), "must be 0 to 180");
-  s.crease_angle = crease * std::numbers::pi / 180;
   s.max_speed = solids.positive("max_speed", s.max_speed);
   const std::string friction = solids.string("friction", "coulomb");
   if (friction == "coulomb") {

@@ -109,6 +109,32 @@ TEST(PenetrationDepth, CubeInSlabGetsItsDepthBelowTheTopFace) {
   }
 }
 
+// A cube sunk into the slab near its edge (x = 0.4), wholly over its top face: with the slab's
+// default crease angle its depths are exactly vertical there too; with smooth vertex normals
+// (crease 180°), tilted by up to 45° at the rim, they point sideways, out over the edge.
+TEST(PenetrationDepth, NearABoxsEdgeTheDepthsStayVerticalUnlessItsEdgesAreSmooth) {
+  for (const Real crease : {kDefaultCreaseAngle, std::numbers::pi}) {
+    std::vector<SolidBody> bodies = cube_in_slab(0.013, 0.32);
+    SolidMaterial slab = bodies[0].material();
+    slab.crease_angle = crease;
+    bodies[0].set_material(slab);
+    Pipeline pipeline;
+    Real largest_tilt = 0;
+    std::size_t cube_contacts = 0;
+    for (const PenetrationContact& c : pipeline.run(bodies)) {
+      if (c.body != 1) continue;
+      ++cube_contacts;
+      const Vec3& x = bodies[1].positions()[c.node];
+      largest_tilt = std::max(largest_tilt, std::abs(c.depth.x()) / c.depth.norm());
+      if (crease < std::numbers::pi) {
+        EXPECT_NEAR((c.depth - Vec3(0, -x.y(), 0)).norm(), 0, 1e-12) << "node " << c.node;
+      }
+    }
+    EXPECT_GT(cube_contacts, 0u);
+    if (crease == std::numbers::pi) EXPECT_GT(largest_tilt, 0.1);
+  }
+}
+
 // The same slab with a sine wave in its top, sampled by the slab's nodes at quarter
 // wavelengths (a zigzag of slope ±0.2), and the cube sliding across a whole wavelength in
 // steps of 1/20 of its cell, at two depths.

@@ -184,19 +184,32 @@ TEST(SolidReader, ParticleLimitCoversTheLattice) {
 
 TEST(SolidReader, SolidSettings) {
   json doc = cube_scene();
-  doc["solids"] = {
-      {"max_step", 0.005}, {"contact_iterations", 4}, {"friction", "thesis"}, {"crease_angle", 90}};
+  doc["solids"] = {{"max_step", 0.005}, {"contact_iterations", 4}, {"friction", "thesis"}};
   const auto scene = load_scene(doc);
   ASSERT_TRUE(scene) << scene.error().what();
   EXPECT_DOUBLE_EQ(scene->world.solids().settings().max_step, 0.005);
   EXPECT_EQ(scene->world.solids().settings().contact_iterations, 4);
   EXPECT_EQ(scene->world.solids().settings().friction, SolidFriction::kThesis);
-  EXPECT_DOUBLE_EQ(scene->world.solids().settings().crease_angle, std::numbers::pi / 2);
-  doc["solids"]["crease_angle"] = 200;
-  EXPECT_NE(error_of(doc).find("solids.crease_angle: must be 0 to 180"), std::string::npos);
-  doc["solids"]["crease_angle"] = 60;
   doc["solids"]["max_step"] = 0.02;
   EXPECT_NE(error_of(doc).find("solids.max_step: must be at most 0.015 s"), std::string::npos);
+}
+
+// A box lattice's edges are sharp (60°) by default, a voxelized shape's staircase is smooth
+// (180°); either can be given.
+TEST(SolidReader, CreaseAngleDependsOnTheShape) {
+  json doc = cube_scene();
+  doc["bodies"].push_back({{"type", "solid"}, {"sphere", {{"radius", 0.5}, {"resolution", 3}}}});
+  const auto scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  const auto& solids = scene->world.solids().bodies();
+  EXPECT_DOUBLE_EQ(solids[0].material().crease_angle, std::numbers::pi / 3);
+  EXPECT_DOUBLE_EQ(solids[1].material().crease_angle, std::numbers::pi);
+  doc["bodies"][0]["crease_angle"] = 90;
+  const auto given = load_scene(doc);
+  ASSERT_TRUE(given) << given.error().what();
+  EXPECT_DOUBLE_EQ(given->world.solids().bodies()[0].material().crease_angle, std::numbers::pi / 2);
+  doc["bodies"][0]["crease_angle"] = 200;
+  EXPECT_NE(error_of(doc).find("bodies[0].crease_angle: must be 0 to 180"), std::string::npos);
 }
 
 // Table 7.2 of the second thesis: three stacked 5×5×5 cubes, in JSON and in its own format.
