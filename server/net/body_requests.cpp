@@ -144,32 +144,34 @@ void handle_add_body(Session& session, std::uint64_t id, const v1::AddBody& add)
   if (!pending) return;
   ServerContext& context = session.context();
   std::shared_ptr<SceneRunner> scene = session.scene();
-  const ClientId client = session.client_id();
-  // a body can be a big mesh to voxelize: built off the network thread
-  boost::asio::post(context.loader, [&context, pending, scene, client, add] {
-    const bool collider = add.has_collider_json();
-    auto entry = parse_json(collider ? add.collider_json() : add.body_json(),
-                            collider ? "the collider" : "the body");
-    if (!entry) {
-      pending->fail(v1::ERROR_CODE_BAD_SCENE, entry.error().what());
-      return;
-    }
-    if (collider) {
-      auto built = load_collider(*entry, "collider");
-      if (!built) return pending->fail(v1::ERROR_CODE_BAD_SCENE, built.error().what());
-      scene->add_collider(client, *built, answer_body_added(pending));
-      return;
-    }
-    SceneLoadOptions options;
-    const std::uint64_t used = scene->bodies()->particles();
-    const std::uint64_t limit = context.options.max_particles_per_scene;
-    options.max_particles = used < limit ? limit - used : 0;
-    options.asset_root = context.scene_directory.root();
-    auto built =
-        load_body(*entry, "body", scene->bodies()->bodies.size(), scene->time_step(), options);
-    if (!built) return pending->fail(v1::ERROR_CODE_BAD_SCENE, built.error().what());
-    scene->add_body(client, std::move(*built), answer_body_added(pending));
-  });
+  const auto bad = [](std::string message) -> std::expected<BuiltBody, RunnerError> {
+    return std::unexpected(RunnerError{RunnerError::Code::kBadScene, std::move(message)});
+  };
+  // a body can be a big mesh to voxelize: built on the loader thread, then added in its place
+  // among the client's requests
+  scene->add_built_body(
+      session.client_id(), on_loader(context, scene),
+      [&context, bad, scene = scene.get(), add]() -> std::expected<BuiltBody, RunnerError> {
+        const bool collider = add.has_collider_json();
+        auto entry = parse_json(collider ? add.collider_json() : add.body_json(),
+                                collider ? "the collider" : "the body");
+        if (!entry) return bad(entry.error().what());
+        if (collider) {
+          auto built = load_collider(*entry, "collider");
+          if (!built) return bad(built.error().what());
+          return *built;
+        }
+        SceneLoadOptions options;
+        const std::uint64_t used = scene->bodies()->particles();
+        const std::uint64_t limit = context.options.max_particles_per_scene;
+        options.max_particles = used < limit ? limit - used : 0;
+        options.asset_root = context.scene_directory.root();
+        auto built =
+            load_body(*entry, "body", scene->bodies()->bodies.size(), scene->time_step(), options);
+        if (!built) return bad(built.error().what());
+        return std::move(*built);
+      },
+      answer_body_added(pending));
 }
 
 void handle_remove_body(Session& session, std::uint64_t id, const v1::RemoveBody& remove) {

@@ -67,6 +67,9 @@ void reply(Session& session, std::uint64_t id, Fill&& fill) {
   session.send(message);
 }
 
+/// Runs a scene's job on the loader thread, keeping the scene alive until it has run.
+Offload on_loader(ServerContext& context, std::shared_ptr<SceneRunner> scene);
+
 /// The ids a request lists, sorted, each once.
 template <class Repeated>
 std::vector<typename Repeated::value_type> sorted_unique(const Repeated& ids) {

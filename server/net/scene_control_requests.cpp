@@ -69,15 +69,10 @@ void handle_time_scale(Session& session, std::uint64_t id, const v1::SetTimeScal
 
 void handle_reset(Session& session, std::uint64_t id) {
   control(session, id,
-          [&context = session.context(), runner = session.scene()](SceneRunner& scene, ClientId by,
+          [loader = on_loader(session.context(), session.scene())](SceneRunner& scene, ClientId by,
                                                                    Completion<SceneStatus> done) {
             // built again on the loader thread: the scene steps on until the new one is in
-            scene.reset(
-                by,
-                [&context, runner](std::function<void()> job) {
-                  boost::asio::post(context.loader, [runner, job = std::move(job)] { job(); });
-                },
-                std::move(done));
+            scene.reset(by, loader, std::move(done));
           });
 }
 

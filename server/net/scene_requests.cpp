@@ -94,6 +94,12 @@ void start_scene(Session& session, std::uint64_t id, DocumentSource read, bool s
 
 }  // namespace
 
+Offload on_loader(ServerContext& context, std::shared_ptr<SceneRunner> scene) {
+  return [&context, scene = std::move(scene)](std::function<void()> job) {
+    boost::asio::post(context.loader, [scene, job = std::move(job)] { job(); });
+  };
+}
+
 void fill_scene_loaded(SceneId scene_id, const SceneRunner& scene, v1::SceneLoaded& out) {
   out.set_scene_id(scene_id);
   out.set_name(scene.name());

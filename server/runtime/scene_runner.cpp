@@ -27,6 +27,28 @@ constexpr auto kBurstPublishPeriod = std::chrono::milliseconds(16);
 // a paused scene with nothing to do still wakes this often to keep its statistics fresh
 constexpr auto kIdleWake = std::chrono::milliseconds(100);
 
+// What a job makes on another thread for a command that waits for it.
+template <class T>
+class MadeElsewhere {
+ public:
+  bool ready() const {
+    std::lock_guard lock(mutex_);
+    return made_.has_value();
+  }
+  void set(std::expected<T, RunnerError> made) {
+    std::lock_guard lock(mutex_);
+    made_ = std::move(made);
+  }
+  std::expected<T, RunnerError> take() {
+    std::lock_guard lock(mutex_);
+    return std::move(*made_);
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::optional<std::expected<T, RunnerError>> made_;
+};
+
 RunnerError error(RunnerError::Code code, std::string message) {
   return RunnerError{code, std::move(message)};
 }
@@ -110,6 +132,25 @@ void SceneRunner::request(Completion<T> done, std::function<void(Scene&, Complet
        std::move(ready));
 }
 
+template <class Made, class T>
+void SceneRunner::request_made_elsewhere(Completion<T> done, const Offload& build_on,
+                                         std::function<std::expected<Made, RunnerError>()> make,
+                                         std::function<void(Scene&, Made&, Completion<T>&)> apply) {
+  auto made = std::make_shared<MadeElsewhere<Made>>();
+  request<T>(
+      std::move(done),
+      [made, apply = std::move(apply)](Scene& scene, Completion<T>& done) {
+        auto value = made->take();
+        if (!value) return done(std::unexpected(value.error()));
+        apply(scene, *value, done);
+      },
+      [made] { return made->ready(); });
+  build_on([this, made, make = std::move(make)] {
+    made->set(make());
+    wake();
+  });
+}
+
 SceneEvent SceneRunner::event(SceneEvent::Kind kind, ClientId by) const {
   SceneEvent e;
   e.kind = kind;
@@ -187,28 +228,17 @@ std::expected<Scene, RunnerError> SceneRunner::rebuild() const {
   return std::move(*fresh);
 }
 
-void SceneRunner::reset(ClientId by, const std::function<void(std::function<void()>)>& build_on,
-                        Completion<SceneStatus> done) {
-  struct Rebuilt {
-    std::mutex mutex;
-    std::optional<std::expected<Scene, RunnerError>> scene;
-  };
-  auto rebuilt = std::make_shared<Rebuilt>();
-  request<SceneStatus>(
-      std::move(done),
-      [this, by, rebuilt](Scene& scene, Completion<SceneStatus>& done) {
-        std::expected<Scene, RunnerError> fresh = [&] {
-          std::lock_guard lock(rebuilt->mutex);
-          return std::move(*rebuilt->scene);
-        }();
-        if (!fresh) return done(std::unexpected(fresh.error()));
+void SceneRunner::reset(ClientId by, const Offload& build_on, Completion<SceneStatus> done) {
+  request_made_elsewhere<Scene, SceneStatus>(
+      std::move(done), build_on, [this] { return rebuild(); },
+      [this, by](Scene& scene, Scene& fresh, Completion<SceneStatus>& done) {
         for (StepRequest& pending : step_requests_) {
           pending.done(
               std::unexpected(error(RunnerError::Code::kCancelled, "the scene was reset")));
         }
         step_requests_.clear();
-        fresh->world.continue_ids_from(scene.world);
-        scene.world = std::move(fresh->world);
+        fresh.world.continue_ids_from(scene.world);
+        scene.world = std::move(fresh.world);
         own_scene_bodies();
         timed_forces_.clear();
         resync_ = true;
@@ -217,19 +247,7 @@ void SceneRunner::reset(ClientId by, const std::function<void(std::function<void
         e.bodies = bodies()->bodies;
         members_.broadcast(std::move(e));
         done(status());
-      },
-      [rebuilt] {
-        std::lock_guard lock(rebuilt->mutex);
-        return rebuilt->scene.has_value();
       });
-  build_on([this, rebuilt] {
-    auto fresh = rebuild();
-    {
-      std::lock_guard lock(rebuilt->mutex);
-      rebuilt->scene = std::move(fresh);
-    }
-    wake();
-  });
 }
 
 void SceneRunner::save_state(ClientId, Completion<SavedState> done) {
@@ -303,33 +321,55 @@ void SceneRunner::added(ClientId by, BodyId id, Completion<BodyInfo>& done) {
   done(info);
 }
 
+void SceneRunner::add_now(ClientId by, SceneBody& body, Scene& scene, Completion<BodyInfo>& done) {
+  if (!room_for_body(done)) return;
+  const std::uint64_t used = bodies()->particles();
+  const std::uint64_t particles =
+      std::visit([](const auto& b) { return b.surface_vertex_count(); }, body);
+  if (used + particles > limits_.max_particles) {
+    done(std::unexpected(error(RunnerError::Code::kLimitExceeded,
+                               std::to_string(particles) + " particles exceed the " +
+                                   std::to_string(limits_.max_particles - used) +
+                                   " the scene's particle limit leaves")));
+    return;
+  }
+  added(by,
+        std::visit([&](auto&& b) { return scene.world.add_body(std::move(b)); }, std::move(body)),
+        done);
+}
+
+void SceneRunner::add_collider_now(ClientId by, const Collider& collider, Scene& scene,
+                                   Completion<BodyInfo>& done) {
+  if (room_for_body(done)) added(by, scene.world.add_collider(collider), done);
+}
+
 void SceneRunner::add_body(ClientId by, SceneBody body, Completion<BodyInfo> done) {
   auto shared_body = std::make_shared<SceneBody>(std::move(body));
-  request<BodyInfo>(
-      std::move(done), [this, by, shared_body](Scene& scene, Completion<BodyInfo>& done) {
-        if (!room_for_body(done)) return;
-        const std::uint64_t used = bodies()->particles();
-        const std::uint64_t particles =
-            std::visit([](const auto& b) { return b.surface_vertex_count(); }, *shared_body);
-        if (used + particles > limits_.max_particles) {
-          done(std::unexpected(error(RunnerError::Code::kLimitExceeded,
-                                     std::to_string(particles) + " particles exceed the " +
-                                         std::to_string(limits_.max_particles - used) +
-                                         " the scene's particle limit leaves")));
-          return;
-        }
-        added(by,
-              std::visit([&](auto&& b) { return scene.world.add_body(std::move(b)); },
-                         std::move(*shared_body)),
-              done);
-      });
+  request<BodyInfo>(std::move(done),
+                    [this, by, shared_body](Scene& scene, Completion<BodyInfo>& done) {
+                      add_now(by, *shared_body, scene, done);
+                    });
 }
 
 void SceneRunner::add_collider(ClientId by, const Collider& collider, Completion<BodyInfo> done) {
   request<BodyInfo>(std::move(done),
                     [this, by, collider](Scene& scene, Completion<BodyInfo>& done) {
-                      if (room_for_body(done)) added(by, scene.world.add_collider(collider), done);
+                      add_collider_now(by, collider, scene, done);
                     });
+}
+
+void SceneRunner::add_built_body(ClientId by, const Offload& build_on,
+                                 std::function<std::expected<BuiltBody, RunnerError>()> build,
+                                 Completion<BodyInfo> done) {
+  request_made_elsewhere<BuiltBody, BodyInfo>(
+      std::move(done), build_on, std::move(build),
+      [this, by](Scene& scene, BuiltBody& built, Completion<BodyInfo>& done) {
+        if (const Collider* collider = std::get_if<Collider>(&built)) {
+          add_collider_now(by, *collider, scene, done);
+        } else {
+          add_now(by, std::get<SceneBody>(built), scene, done);
+        }
+      });
 }
 
 void SceneRunner::remove_body(ClientId by, BodyId body, Completion<BodyId> done) {

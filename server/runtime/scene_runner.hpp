@@ -7,12 +7,14 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <expected>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
+#include <variant>
 #include <vector>
 
 #include "core/world_state.hpp"
@@ -70,6 +72,13 @@ struct SavedState {
   double sim_time = 0;
 };
 
+/// Runs a job on another thread (a loader's), keeping whatever the job needs alive until it
+/// has run.
+using Offload = std::function<void(std::function<void()>)>;
+
+/// What AddBody builds: a scene file's body or one of its colliders.
+using BuiltBody = std::variant<SceneBody, Collider>;
+
 /// What a scene refuses to grow past.
 struct SceneLimits {
   std::size_t max_bodies = 256;
@@ -123,9 +132,8 @@ class SceneRunner {
   /// Builds the scene again from its source, as a job given to `build_on` (a loader thread:
   /// building can take long, and the scene steps on meanwhile), and swaps it in at the
   /// request's place among the others: the requests after it wait for it. Bodies added since
-  /// are gone, time is 0. `build_on` must keep the runner alive until the job has run.
-  void reset(ClientId by, const std::function<void(std::function<void()>)>& build_on,
-             Completion<SceneStatus> done);
+  /// are gone, time is 0.
+  void reset(ClientId by, const Offload& build_on, Completion<SceneStatus> done);
   /// Keeps the state (the latest kMaxSavedStates saves) and returns it.
   void save_state(ClientId by, Completion<SavedState> done);
   void restore_state(ClientId by, std::uint32_t state_id, Completion<SceneStatus> done);
@@ -133,6 +141,11 @@ class SceneRunner {
                      Completion<SceneStatus> done);
   void add_body(ClientId by, SceneBody body, Completion<BodyInfo> done);
   void add_collider(ClientId by, const Collider& collider, Completion<BodyInfo> done);
+  /// Builds a body with `build`, as a job given to `build_on` (a mesh may take long to
+  /// voxelize), and adds it at the request's place among the others, as reset does.
+  void add_built_body(ClientId by, const Offload& build_on,
+                      std::function<std::expected<BuiltBody, RunnerError>()> build,
+                      Completion<BodyInfo> done);
   void remove_body(ClientId by, BodyId body, Completion<BodyId> done);
   /// Runs `change` on a live body's world between steps (nothing if the body is gone by then)
   /// and tells the other clients.
@@ -194,6 +207,15 @@ class SceneRunner {
   template <class T>
   void request(Completion<T> done, std::function<void(Scene&, Completion<T>&)> run,
                std::function<bool()> ready = {});
+  /// A request whose `make` runs as a job given to `build_on` first; `apply` then gets what it
+  /// made at the request's place among the others (those after it wait), or its error answers.
+  template <class Made, class T>
+  void request_made_elsewhere(Completion<T> done, const Offload& build_on,
+                              std::function<std::expected<Made, RunnerError>()> make,
+                              std::function<void(Scene&, Made&, Completion<T>&)> apply);
+  void add_now(ClientId by, SceneBody& body, Scene& scene, Completion<BodyInfo>& done);
+  void add_collider_now(ClientId by, const Collider& collider, Scene& scene,
+                        Completion<BodyInfo>& done);
   /// Wakes the physics thread to look at its commands.
   void wake();
   std::expected<Scene, RunnerError> rebuild() const;

@@ -252,6 +252,41 @@ Vec3 momentum(SceneRunner& runner, const std::vector<Real>& mass) {
   return p;
 }
 
+// A body built elsewhere is added at its request's place: removing it right after asking for
+// it works, though its build takes 200 ms.
+TEST(SceneRunnerRequests, ABodyBuiltElsewhereIsAddedBeforeTheRequestsAfterIt) {
+  Fixture f;
+  std::jthread builder;
+  Awaited<BodyInfo> added;
+  Awaited<BodyId> removed;
+  f.runner.add_built_body(
+      1,
+      [&](std::function<void()> job) {
+        builder = std::jthread([job = std::move(job)] {
+          std::this_thread::sleep_for(200ms);
+          job();
+        });
+      },
+      [] { return std::expected<BuiltBody, RunnerError>(another_cloth()); }, added.completion());
+  f.runner.remove_body(1, 1, removed.completion());  // the id the added body will have
+  const auto body = added.get();
+  ASSERT_TRUE(body);
+  EXPECT_EQ(body->body_id, 1u);
+  const auto gone = removed.get();
+  ASSERT_TRUE(gone) << gone.error().message;
+  EXPECT_EQ(f.runner.bodies()->bodies.size(), 1u);
+  // a build that fails answers with its error, in its place too
+  Awaited<BodyInfo> refused;
+  f.runner.add_built_body(
+      1, build_here,
+      [] {
+        return std::expected<BuiltBody, RunnerError>(
+            std::unexpected(RunnerError{RunnerError::Code::kBadScene, "no such mesh"}));
+      },
+      refused.completion());
+  EXPECT_EQ(refused.get().error().code, RunnerError::Code::kBadScene);
+}
+
 // A reset whose scene is still being rebuilt when the scene stops is cancelled, and so is
 // every request waiting behind it.
 TEST(SceneRunnerRequests, AResetStillBeingBuiltIsCancelledWithTheSceneStop) {
