@@ -45,13 +45,12 @@ class PenetrationDepthEstimator {
   /// normals barycentrically (as Heidelberger et al. 2004 do with vertex normals; the thesis
   /// leaves it open), so it varies continuously across triangles, except across a sharp edge
   /// (one turning by more than the penetrated body's SolidMaterial::crease_angle): there each
-  /// side keeps its own normal. With
-  /// smooth vertex normals everywhere a node near the edge of a box's face gets a vector
-  /// tilted by up to 45° toward the side face, and a stack of boxes creeps sideways on it. Depths
-  /// below `min_depth` (and estimates that point the wrong way) become zero; distances in the 1/d²
-  /// weights are floored at `min_depth` so a crossing at the node itself cannot overflow them. A
-  /// contact that no estimate reaches (no border node of its region found a crossing) and a zero
-  /// depth give depth zero and no triangle.
+  /// side keeps its own normal. With smooth vertex normals everywhere a node near the edge of
+  /// a box's face gets a vector tilted by up to 45° toward the side face, and a stack of boxes
+  /// creeps sideways on it. Depths below `min_depth` (and estimates that point the wrong way)
+  /// become zero; distances in the 1/d² weights are floored at `min_depth` so a crossing at the
+  /// node itself cannot overflow them. A contact that no estimate reaches (no border node of
+  /// its region found a crossing) and a zero depth give depth zero and no triangle.
   void compute(std::span<const SolidBody> bodies, const CollisionSet& collisions, Real min_depth,
                std::vector<PenetrationContact>& out);
 

@@ -149,7 +149,7 @@ void handle_add_body(Session& session, std::uint64_t id, const v1::AddBody& add)
   };
   // a body can be a big mesh to voxelize: built on the loader thread, then added in its place
   // among the client's requests
-  scene->add_built_body(
+  scene->add_body(
       session.client_id(), on_loader(context, scene),
       [&context, bad, scene = scene.get(), add]() -> std::expected<BuiltBody, RunnerError> {
         const bool collider = add.has_collider_json();

@@ -321,54 +321,31 @@ void SceneRunner::added(ClientId by, BodyId id, Completion<BodyInfo>& done) {
   done(info);
 }
 
-void SceneRunner::add_now(ClientId by, SceneBody& body, Scene& scene, Completion<BodyInfo>& done) {
-  if (!room_for_body(done)) return;
-  const std::uint64_t used = bodies()->particles();
-  const std::uint64_t particles =
-      std::visit([](const auto& b) { return b.surface_vertex_count(); }, body);
-  if (used + particles > limits_.max_particles) {
-    done(std::unexpected(error(RunnerError::Code::kLimitExceeded,
-                               std::to_string(particles) + " particles exceed the " +
-                                   std::to_string(limits_.max_particles - used) +
-                                   " the scene's particle limit leaves")));
-    return;
-  }
-  added(by,
-        std::visit([&](auto&& b) { return scene.world.add_body(std::move(b)); }, std::move(body)),
-        done);
-}
-
-void SceneRunner::add_collider_now(ClientId by, const Collider& collider, Scene& scene,
-                                   Completion<BodyInfo>& done) {
-  if (room_for_body(done)) added(by, scene.world.add_collider(collider), done);
-}
-
-void SceneRunner::add_body(ClientId by, SceneBody body, Completion<BodyInfo> done) {
-  auto shared_body = std::make_shared<SceneBody>(std::move(body));
-  request<BodyInfo>(std::move(done),
-                    [this, by, shared_body](Scene& scene, Completion<BodyInfo>& done) {
-                      add_now(by, *shared_body, scene, done);
-                    });
-}
-
-void SceneRunner::add_collider(ClientId by, const Collider& collider, Completion<BodyInfo> done) {
-  request<BodyInfo>(std::move(done),
-                    [this, by, collider](Scene& scene, Completion<BodyInfo>& done) {
-                      add_collider_now(by, collider, scene, done);
-                    });
-}
-
-void SceneRunner::add_built_body(ClientId by, const Offload& build_on,
-                                 std::function<std::expected<BuiltBody, RunnerError>()> build,
-                                 Completion<BodyInfo> done) {
+void SceneRunner::add_body(ClientId by, const Offload& build_on,
+                           std::function<std::expected<BuiltBody, RunnerError>()> build,
+                           Completion<BodyInfo> done) {
   request_made_elsewhere<BuiltBody, BodyInfo>(
       std::move(done), build_on, std::move(build),
       [this, by](Scene& scene, BuiltBody& built, Completion<BodyInfo>& done) {
+        if (!room_for_body(done)) return;
         if (const Collider* collider = std::get_if<Collider>(&built)) {
-          add_collider_now(by, *collider, scene, done);
-        } else {
-          add_now(by, std::get<SceneBody>(built), scene, done);
+          return added(by, scene.world.add_collider(*collider), done);
         }
+        SceneBody& body = std::get<SceneBody>(built);
+        const std::uint64_t used = bodies()->particles();
+        const std::uint64_t particles =
+            std::visit([](const auto& b) { return b.surface_vertex_count(); }, body);
+        if (used + particles > limits_.max_particles) {
+          done(std::unexpected(error(RunnerError::Code::kLimitExceeded,
+                                     std::to_string(particles) + " particles exceed the " +
+                                         std::to_string(limits_.max_particles - used) +
+                                         " the scene's particle limit leaves")));
+          return;
+        }
+        added(by,
+              std::visit([&](auto&& b) { return scene.world.add_body(std::move(b)); },
+                         std::move(body)),
+              done);
       });
 }
 

@@ -139,13 +139,11 @@ class SceneRunner {
   void restore_state(ClientId by, std::uint32_t state_id, Completion<SceneStatus> done);
   void restore_state(ClientId by, std::shared_ptr<const WorldState> state,
                      Completion<SceneStatus> done);
-  void add_body(ClientId by, SceneBody body, Completion<BodyInfo> done);
-  void add_collider(ClientId by, const Collider& collider, Completion<BodyInfo> done);
   /// Builds a body with `build`, as a job given to `build_on` (a mesh may take long to
   /// voxelize), and adds it at the request's place among the others, as reset does.
-  void add_built_body(ClientId by, const Offload& build_on,
-                      std::function<std::expected<BuiltBody, RunnerError>()> build,
-                      Completion<BodyInfo> done);
+  void add_body(ClientId by, const Offload& build_on,
+                std::function<std::expected<BuiltBody, RunnerError>()> build,
+                Completion<BodyInfo> done);
   void remove_body(ClientId by, BodyId body, Completion<BodyId> done);
   /// Runs `change` on a live body's world between steps (nothing if the body is gone by then)
   /// and tells the other clients.
@@ -213,9 +211,6 @@ class SceneRunner {
   void request_made_elsewhere(Completion<T> done, const Offload& build_on,
                               std::function<std::expected<Made, RunnerError>()> make,
                               std::function<void(Scene&, Made&, Completion<T>&)> apply);
-  void add_now(ClientId by, SceneBody& body, Scene& scene, Completion<BodyInfo>& done);
-  void add_collider_now(ClientId by, const Collider& collider, Scene& scene,
-                        Completion<BodyInfo>& done);
   /// Wakes the physics thread to look at its commands.
   void wake();
   std::expected<Scene, RunnerError> rebuild() const;

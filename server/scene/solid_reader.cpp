@@ -186,7 +186,8 @@ SolidBody read_solid(const ObjectReader& body, std::size_t index,
   for (Vec3& x : shape.lattice.nodes) x = transform.apply(x);
   // a rotation and positive scales keep every tetrahedron positive
   SolidMaterial material = read_material(body);
-  const Real crease = body.number("crease_angle", shape.voxelized ? 180 : 60);
+  const Real crease = body.number(
+      "crease_angle", shape.voxelized ? 180 : kDefaultCreaseAngle * 180 / std::numbers::pi);
   if (!(crease >= 0 && crease <= 180)) fail(body.path_of("crease_angle"), "must be 0 to 180");
   material.crease_angle = crease * std::numbers::pi / 180;
   SolidBody solid(body.string("name", "solid" + std::to_string(index)), std::move(shape.lattice),

@@ -36,6 +36,20 @@ struct Fixture {
   SceneRunner runner;
 };
 
+/// Runs a reset's or an added body's build at once, on the calling thread.
+void build_here(std::function<void()> job) {
+  job();
+}
+
+/// Adds `body` as AddBody does, built at once.
+void add(SceneRunner& runner, ClientId by, BuiltBody body, Completion<BodyInfo> done) {
+  auto shared = std::make_shared<BuiltBody>(std::move(body));
+  runner.add_body(
+      by, build_here,
+      [shared] { return std::expected<BuiltBody, RunnerError>(std::move(*shared)); },
+      std::move(done));
+}
+
 /// The flat cloth as a body to add.
 SceneBody another_cloth() {
   return SceneBody(std::move(flat_cloth_scene().world.cloths()[0]));
@@ -85,7 +99,7 @@ TEST(SceneRunnerRequests, APausedScenePublishesOnlyVisibleChanges) {
   ASSERT_TRUE(later_turn());
   ASSERT_TRUE(later_turn());
   EXPECT_EQ(f.runner.latest()->version, version);
-  ASSERT_TRUE(await<BodyInfo>([&](auto done) { f.runner.add_body(1, another_cloth(), done); }));
+  ASSERT_TRUE(await<BodyInfo>([&](auto done) { add(f.runner, 1, another_cloth(), done); }));
   EXPECT_GT(f.runner.latest()->version, version);
 }
 
@@ -152,8 +166,7 @@ TEST(SceneRunnerRequests, OnlyTheLatestSavesAreKept) {
 
 TEST(SceneRunnerRequests, BodiesComeAndGoWithEventsAndFreshIds) {
   Fixture f;
-  const auto added =
-      await<BodyInfo>([&](auto done) { f.runner.add_body(1, another_cloth(), done); });
+  const auto added = await<BodyInfo>([&](auto done) { add(f.runner, 1, another_cloth(), done); });
   ASSERT_TRUE(added);
   EXPECT_EQ(added->body_id, 1u);
   EXPECT_EQ(added->owner, 1u);
@@ -181,24 +194,19 @@ TEST(SceneRunnerRequests, TheBodyAndParticleLimitsHold) {
   SceneRunner runner(flat_cloth_scene(), {}, {}, SceneLimits{2, 200});
   runner.start();
   // 121 + 121 particles exceed 200
-  const auto heavy = await<BodyInfo>([&](auto done) { runner.add_body(0, another_cloth(), done); });
+  const auto heavy = await<BodyInfo>([&](auto done) { add(runner, 0, another_cloth(), done); });
   EXPECT_EQ(heavy.error().code, RunnerError::Code::kLimitExceeded);
   Collider ball;
   ball.shape = Collider::Shape::kSphere;
-  ASSERT_TRUE(await<BodyInfo>([&](auto done) { runner.add_collider(0, ball, done); }));
-  const auto third = await<BodyInfo>([&](auto done) { runner.add_collider(0, ball, done); });
+  ASSERT_TRUE(await<BodyInfo>([&](auto done) { add(runner, 0, ball, done); }));
+  const auto third = await<BodyInfo>([&](auto done) { add(runner, 0, ball, done); });
   EXPECT_EQ(third.error().code, RunnerError::Code::kLimitExceeded);
   runner.stop();
 }
 
-/// Runs a reset's rebuild at once, on the calling thread.
-void build_here(std::function<void()> job) {
-  job();
-}
-
 TEST(SceneRunnerRequests, ResetBuildsTheSceneAgainFromItsSource) {
   Fixture f;
-  ASSERT_TRUE(await<BodyInfo>([&](auto done) { f.runner.add_body(1, another_cloth(), done); }));
+  ASSERT_TRUE(await<BodyInfo>([&](auto done) { add(f.runner, 1, another_cloth(), done); }));
   ASSERT_TRUE(wait_for([&] { return f.runner.latest()->sim_time > 0.1; }));
   const auto reset = await<SceneStatus>([&](auto done) { f.runner.reset(1, build_here, done); });
   ASSERT_TRUE(reset);
@@ -259,7 +267,7 @@ TEST(SceneRunnerRequests, ABodyBuiltElsewhereIsAddedBeforeTheRequestsAfterIt) {
   std::jthread builder;
   Awaited<BodyInfo> added;
   Awaited<BodyId> removed;
-  f.runner.add_built_body(
+  f.runner.add_body(
       1,
       [&](std::function<void()> job) {
         builder = std::jthread([job = std::move(job)] {
@@ -277,7 +285,7 @@ TEST(SceneRunnerRequests, ABodyBuiltElsewhereIsAddedBeforeTheRequestsAfterIt) {
   EXPECT_EQ(f.runner.bodies()->bodies.size(), 1u);
   // a build that fails answers with its error, in its place too
   Awaited<BodyInfo> refused;
-  f.runner.add_built_body(
+  f.runner.add_body(
       1, build_here,
       [] {
         return std::expected<BuiltBody, RunnerError>(
