@@ -1,6 +1,9 @@
 #include "async_client.hpp"
 
+#include <cerrno>
 #include <future>
+
+#include <sys/socket.h>
 
 #include "wire/message_codec.hpp"
 
@@ -34,6 +37,10 @@ v1::Welcome AsyncClient::connect(const std::string& host, std::uint16_t port,
                                                       std::to_string(port) + ": " + ec.message());
   }
   socket_.set_option(tcp::no_delay(true));
+  {
+    std::lock_guard lock(write_mutex_);
+    open_ = true;
+  }
   connected_ = true;
   read();
   thread_ = std::thread([this] { io_.run(); });
@@ -48,6 +55,8 @@ v1::Welcome AsyncClient::connect(const std::string& host, std::uint16_t port,
 void AsyncClient::close() {
   if (thread_.joinable()) {
     asio::post(io_, [this] {
+      std::lock_guard lock(write_mutex_);
+      open_ = false;
       boost::system::error_code ignored;
       socket_.shutdown(tcp::socket::shutdown_both, ignored);
       socket_.close(ignored);
@@ -66,11 +75,29 @@ std::uint64_t AsyncClient::send(v1::ClientMessage message, ReplyHandler on_reply
   }
   std::string bytes;
   wire::append_message(bytes, message);
-  asio::post(io_, [this, bytes = std::move(bytes)]() mutable {
-    outbox_.push_back(std::move(bytes));
-    write_next();
-  });
+  write(std::move(bytes));
   return id;
+}
+
+void AsyncClient::write(std::string bytes) {
+  std::lock_guard lock(write_mutex_);
+  if (!open_) return;
+  if (outbox_.empty()) {
+    // a plain non-blocking send on the descriptor: the client's thread only reads meanwhile
+    const ssize_t sent =
+        ::send(socket_.native_handle(), bytes.data(), bytes.size(), MSG_DONTWAIT | MSG_NOSIGNAL);
+    if (sent == static_cast<ssize_t>(bytes.size())) return;
+    if (sent < 0 && errno != EAGAIN && errno != EWOULDBLOCK) {
+      open_ = false;
+      connected_ = false;
+      return;
+    }
+    bytes.erase(0, sent < 0 ? 0 : static_cast<std::size_t>(sent));
+    outbox_.push_back(std::move(bytes));
+    asio::post(io_, [this] { write_next(); });
+    return;
+  }
+  outbox_.push_back(std::move(bytes));
 }
 
 void AsyncClient::send_proxy_update(std::uint32_t proxy_id, const Point& position,
@@ -103,12 +130,19 @@ v1::ServerMessage AsyncClient::request(v1::ClientMessage message,
 }
 
 void AsyncClient::write_next() {
-  if (writing_ || outbox_.empty() || !socket_.is_open()) return;
-  writing_ = true;
+  std::lock_guard lock(write_mutex_);
+  if (outbox_.empty() || !open_) return;
+  // the front stays put while others are queued behind it (a deque keeps its elements)
   asio::async_write(socket_, asio::buffer(outbox_.front()),
                     [this](const boost::system::error_code& ec, std::size_t) {
-                      writing_ = false;
-                      outbox_.pop_front();
+                      {
+                        std::lock_guard lock(write_mutex_);
+                        outbox_.pop_front();
+                        if (ec) {
+                          open_ = false;  // what is queued can never go out
+                          outbox_.clear();
+                        }
+                      }
                       if (ec) {
                         connected_ = false;
                         return;

@@ -58,6 +58,8 @@ class AsyncClient {
 
  private:
   void read();
+  /// Queues `bytes` behind what is waiting, or writes them at once from the calling thread.
+  void write(std::string bytes);
   void write_next();
   void deliver(felt::v1::ServerMessage& message);
 
@@ -65,8 +67,11 @@ class AsyncClient {
   boost::asio::ip::tcp::socket socket_;
   wire::FrameDecoder decoder_;
   std::array<std::uint8_t, 64 * 1024> buffer_;
-  std::deque<std::string> outbox_;  ///< touched on the client's thread only
-  bool writing_ = false;
+  // Writes happen on the caller's thread while nothing waits (no wake of the client's thread
+  // on a 1 kHz loop's path), else on the client's thread in order; the mutex keeps them apart.
+  std::mutex write_mutex_;
+  std::deque<std::string> outbox_;  ///< its front is being written by the client's thread
+  bool open_ = false;               ///< the socket may be written to (not closed yet)
   std::atomic<bool> connected_{false};
   std::atomic<std::uint64_t> next_request_id_{1};
   std::mutex handlers_mutex_;

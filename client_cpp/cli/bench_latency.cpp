@@ -27,6 +27,9 @@ struct Device {
   std::mutex mutex;
   std::vector<double> round_trips_us;
   std::vector<double> server_us;  ///< of each round trip, the server's share (receive to send)
+  // the legs before and after it; both ends read the same steady clock on one host
+  std::vector<double> inbound_us;   ///< client send to server receive
+  std::vector<double> outbound_us;  ///< server send to client read
   std::uint64_t sent = 0;
   std::atomic<std::uint64_t> frames{0};
   std::atomic<std::uint64_t> frame_bytes{0};
@@ -53,8 +56,11 @@ int bench_latency(const Common& common, const BenchOptions& o) {
     d->client.on_force([d](const v1::ForceUpdate& force, std::uint64_t received_us) {
       std::lock_guard lock(d->mutex);
       d->round_trips_us.push_back(static_cast<double>(received_us - force.client_time_us()));
-      d->server_us.push_back(
-          1e-3 * static_cast<double>(force.server_send_ns() - force.server_receive_ns()));
+      const double receive_us = 1e-3 * static_cast<double>(force.server_receive_ns());
+      const double send_us = 1e-3 * static_cast<double>(force.server_send_ns());
+      d->server_us.push_back(send_us - receive_us);
+      d->inbound_us.push_back(receive_us - static_cast<double>(force.client_time_us()));
+      d->outbound_us.push_back(static_cast<double>(received_us) - send_us);
     });
     d->client.on_frame([d, deltas = o.deltas](const v1::Frame& frame) {
       ++d->frames;
@@ -127,7 +133,7 @@ int bench_latency(const Common& common, const BenchOptions& o) {
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the last replies
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
 
-  std::vector<double> all, server;
+  std::vector<double> all, server, inbound, outbound;
   std::uint64_t sent = 0, frames = 0, frame_bytes = 0, skipped = 0;
   std::ofstream csv;
   if (!o.csv.empty()) {
@@ -143,26 +149,31 @@ int bench_latency(const Common& common, const BenchOptions& o) {
     skipped += d.skipped;
     all.insert(all.end(), d.round_trips_us.begin(), d.round_trips_us.end());
     server.insert(server.end(), d.server_us.begin(), d.server_us.end());
+    inbound.insert(inbound.end(), d.inbound_us.begin(), d.inbound_us.end());
+    outbound.insert(outbound.end(), d.outbound_us.begin(), d.outbound_us.end());
     if (csv) {
       for (double rtt : d.round_trips_us) csv << c << "," << rtt << "\n";
     }
   }
   std::sort(all.begin(), all.end());
   std::sort(server.begin(), server.end());
+  std::sort(inbound.begin(), inbound.end());
+  std::sort(outbound.begin(), outbound.end());
   std::printf(
       "| clients | slow readers | rate Hz | updates | answered | p50 us | p90 us | "
       "p99 us | p99.9 us | max us | server p50 us | server p99 us | frames/s per client | "
-      "kB per frame | skipped |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "kB per frame | skipped | inbound p99 us | outbound p99 us |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::printf(
       "| %d | %d | %.0f | %llu | %zu | %.0f | %.0f | %.0f | %.0f | %.0f | %.1f | %.1f | "
-      "%.1f | %.2f | %llu |\n",
+      "%.1f | %.2f | %llu | %.0f | %.0f |\n",
       o.clients, o.slow_readers, o.rate, static_cast<unsigned long long>(sent), all.size(),
       percentile(all, 0.5), percentile(all, 0.9), percentile(all, 0.99), percentile(all, 0.999),
       percentile(all, 1.0), percentile(server, 0.5), percentile(server, 0.99),
       static_cast<double>(frames) / o.clients / wall,
       frames ? static_cast<double>(frame_bytes) / frames / 1e3 : 0.0,
-      static_cast<unsigned long long>(skipped));
+      static_cast<unsigned long long>(skipped), percentile(inbound, 0.99),
+      percentile(outbound, 0.99));
   return all.size() == sent ? 0 : 1;
 }
 
