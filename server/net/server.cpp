@@ -65,22 +65,26 @@ void Server::shutdown() {
   });
   std::lock_guard lock(sessions_mutex_);
   shutting_down_ = true;
-  for (const auto& weak : sessions_) {
-    if (auto session = weak.lock()) session->close_gracefully();
-  }
+  for (const auto& session : live_sessions()) session->close_gracefully();
 }
 
 void Server::close_all() {
   std::lock_guard lock(sessions_mutex_);
-  for (const auto& weak : sessions_) {
-    if (auto session = weak.lock()) session->close();
-  }
+  for (const auto& session : live_sessions()) session->close();
 }
 
 std::size_t Server::client_count() {
   std::lock_guard lock(sessions_mutex_);
+  return live_sessions().size();
+}
+
+std::vector<std::shared_ptr<Session>> Server::live_sessions() {
   std::erase_if(sessions_, [](const std::weak_ptr<Session>& s) { return s.expired(); });
-  return sessions_.size();
+  std::vector<std::shared_ptr<Session>> live;
+  for (const auto& weak : sessions_) {
+    if (auto session = weak.lock()) live.push_back(std::move(session));
+  }
+  return live;
 }
 
 }  // namespace felt::net

@@ -33,6 +33,8 @@ class Server {
 
  private:
   void accept();
+  /// Forgets the sessions that ended and returns the others; the caller holds sessions_mutex_.
+  std::vector<std::shared_ptr<Session>> live_sessions();
 
   boost::asio::io_context& io_;
   ServerContext& context_;
