@@ -1,10 +1,11 @@
-// What a frame costs the network thread: building one from a snapshot of a 100 x 100 cloth and
-// serializing it, per encoding (docs/results/service.md). Each client's frame is built on the
-// thread that also answers haptic updates, so this is time those updates may wait.
+// What a frame costs the network thread: building one from a snapshot of the 100 x 100 cloth of
+// scenes/service_bench.json and serializing it, per encoding (docs/results/service.md). Each
+// client's frame is built on the thread that also answers haptic updates, so this is time those
+// updates may wait.
 
 #include <benchmark/benchmark.h>
 
-#include "core/cloth_grid.hpp"
+#include "bench_scene.hpp"
 #include "felt/v1/envelope.pb.h"
 #include "net/frame_stream.hpp"
 #include "wire/message_codec.hpp"
@@ -12,25 +13,8 @@
 namespace felt::net {
 namespace {
 
-World hanging_cloth() {
-  World world(WorldSettings{Vec3(0, -9.81, 0), 2e-3, 100, 6});
-  GridClothSpec spec;
-  spec.nx = spec.ny = 100;
-  spec.width = spec.height = 2;
-  spec.total_mass = 4;
-  ClothParams params;
-  params.spring(SpringKind::kStructural) = {true, 30, 0.05};
-  params.spring(SpringKind::kShear) = {true, 8, 0.02};
-  params.spring(SpringKind::kBend) = {true, 1, 0.005};
-  ClothBody cloth("sheet", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
-                  make_integrator("symplectic_euler"));
-  for (std::uint32_t p : grid_pin_indices(spec, GridPinPreset::kTopRow)) cloth.pin(p);
-  world.add_body(std::move(cloth));
-  return world;
-}
-
 void frame(benchmark::State& state, bool quantized, bool deltas, bool normals) {
-  World world = hanging_cloth();
+  World world = bench::load_bench_scene("service_bench.json").world;
   std::vector<std::shared_ptr<SceneSnapshot>> snapshots;
   for (int i = 0; i < 64; ++i) {
     for (int s = 0; s < 8; ++s) world.step();  // 60 Hz frames of a 500 Hz scene

@@ -3,12 +3,10 @@
 // soft-solid benchmark and the results table.
 
 #include <array>
-#include <filesystem>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 
-#include "scene/scene_loader.hpp"
+#include "bench_scene.hpp"
 
 namespace felt::bench {
 
@@ -34,13 +32,7 @@ inline constexpr std::array<std::string_view, 4> kThesisScenes = {"three_cubes",
                                                                   "cube_on_rings", "two_rings"};
 
 inline Scene load_thesis_scene(std::string_view name) {
-  SceneLoadOptions options;
-  options.asset_root = FELT_SCENE_DIR;
-  const std::filesystem::path file =
-      std::filesystem::path(FELT_SCENE_DIR) / "thesis" / (std::string(name) + ".json");
-  auto scene = load_scene_file(file, options);
-  if (!scene) throw std::runtime_error(file.string() + ": " + scene.error().what());
-  return std::move(*scene);
+  return load_bench_scene("thesis/" + std::string(name) + ".json");
 }
 
 }  // namespace felt::bench
