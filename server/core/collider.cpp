@@ -31,6 +31,29 @@ SignedDistance box_distance(const Vec3& p, const Vec3& center, const Vec3& half)
   return {q[axis], normal};
 }
 
+/// Whether p may be closer than `reach` to the collider's surface, told without a root or a
+/// division: nearly every particle of a cloth is far from a small ball (a haptic proxy), and a
+/// full signed distance for each cost a fifth of a step with eight proxies in the scene.
+bool may_be_within(const Collider& c, const Vec3& p, Real reach) {
+  switch (c.shape) {
+    case Collider::Shape::kPlane:
+      return c.normal.dot(p - c.center) < reach;
+    case Collider::Shape::kSphere: {
+      const Real r = c.radius + reach;
+      return (p - c.center).squaredNorm() < r * r;
+    }
+    case Collider::Shape::kBox:
+      // the distance to a box is at least its largest per-axis distance outside it
+      return ((p - c.center).cwiseAbs() - c.half_extents).maxCoeff() < reach;
+    case Collider::Shape::kCapsule: {
+      // the ball around the capsule
+      const Real r = c.radius + reach + 0.5 * (c.end - c.center).norm();
+      return (p - 0.5 * (c.center + c.end)).squaredNorm() < r * r;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 SignedDistance signed_distance(const Collider& c, const Vec3& p) {
@@ -57,7 +80,7 @@ std::size_t resolve_collisions(std::span<const Collider> colliders, std::span<co
   std::size_t contacts = 0;
   for (const Collider& collider : colliders) {
     for (std::size_t p = 0; p < state.size(); ++p) {
-      if (inv_mass[p] == 0) continue;
+      if (inv_mass[p] == 0 || !may_be_within(collider, state.x[p], thickness)) continue;
       const SignedDistance sd = signed_distance(collider, state.x[p]);
       if (sd.distance >= thickness) continue;
       ++contacts;

@@ -1,5 +1,6 @@
-// Static colliders: signed distances against brute force, Coulomb friction against its
-// analytic deceleration, and cloth that never sinks into what it rests on.
+// Static colliders: signed distances against brute force, contacts against the signed distance
+// of every particle, Coulomb friction against its analytic deceleration, and cloth that never
+// sinks into what it rests on.
 
 #include "core/collider.hpp"
 
@@ -100,6 +101,47 @@ TEST(Collider, NormalsAreTheGradientOfTheDistance) {
   EXPECT_NEAR(signed_distance(sphere(Vec3::Zero(), 1), Vec3(0, 3, 4)).distance, 4, 1e-15);
   EXPECT_NEAR(signed_distance(capsule(Vec3::Zero(), Vec3(2, 0, 0), 0.5), Vec3(1, 2, 0)).distance,
               1.5, 1e-15);
+}
+
+TEST(Collider, EveryParticleWithinTheThicknessIsResolvedAndNoOther) {
+  // particles scattered around each shape, many in a thin shell about the thickness: those the
+  // signed distance puts closer than the thickness move out to it, the others stay (the test
+  // that skips far particles must never skip a near one)
+  const Real thickness = 0.01;
+  Collider floor;
+  floor.normal = Vec3(1, 2, 2).normalized();
+  floor.center = Vec3(0.1, -0.2, 0.3);
+  const std::vector<Collider> shapes = {floor, sphere(Vec3(0.2, 0.1, 0), 0.3),
+                                        box(Vec3(0, 0.1, 0.2), Vec3(0.3, 0.1, 0.2)),
+                                        capsule(Vec3(-0.3, 0, 0), Vec3(0.4, 0.2, 0.1), 0.15)};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<Real> coordinate(-0.8, 0.8);
+  for (const Collider& shape : shapes) {
+    ParticleState state;
+    while (state.size() < 4000) {
+      // a point, then along the distance's gradient to a chosen distance from the surface
+      const Vec3 p(coordinate(rng), coordinate(rng), coordinate(rng));
+      const SignedDistance sd = signed_distance(shape, p);
+      const Real wanted = std::uniform_real_distribution<Real>(-0.5, 3)(rng) * thickness;
+      const Vec3 q = p + (wanted - sd.distance) * sd.normal;
+      state.x.push_back(state.size() % 4 == 0 ? p : q);
+      state.v.push_back(Vec3::Zero());
+    }
+    const ParticleState before = state;
+    const std::vector<Real> inv_mass(state.size(), 1);
+    std::size_t near = 0;
+    for (const Vec3& p : before.x) near += signed_distance(shape, p).distance < thickness;
+    ASSERT_GT(near, 1000u);
+    EXPECT_EQ(resolve_collisions(std::span(&shape, 1), inv_mass, thickness, state), near);
+    for (std::size_t p = 0; p < state.size(); ++p) {
+      const Real distance = signed_distance(shape, before.x[p]).distance;
+      if (distance < thickness) {
+        EXPECT_NEAR(signed_distance(shape, state.x[p]).distance, thickness, 1e-9) << p;
+      } else {
+        EXPECT_EQ(state.x[p], before.x[p]) << p;
+      }
+    }
+  }
 }
 
 TEST(Collider, CoulombFrictionDeceleratesAtMuG) {
