@@ -141,11 +141,9 @@ void AsyncClient::write_next() {
                         if (ec) {
                           open_ = false;  // what is queued can never go out
                           outbox_.clear();
+                          connected_ = false;
+                          return;
                         }
-                      }
-                      if (ec) {
-                        connected_ = false;
-                        return;
                       }
                       write_next();
                     });

@@ -31,28 +31,57 @@ SignedDistance box_distance(const Vec3& p, const Vec3& center, const Vec3& half)
   return {q[axis], normal};
 }
 
-/// Whether p may be closer than `reach` to the collider's surface, told without a root or a
-/// division: nearly every particle of a cloth is far from a small ball (a haptic proxy), and a
-/// full signed distance for each cost a fifth of a step with eight proxies in the scene.
-bool may_be_within(const Collider& c, const Vec3& p, Real reach) {
-  switch (c.shape) {
-    case Collider::Shape::kPlane:
-      return c.normal.dot(p - c.center) < reach;
-    case Collider::Shape::kSphere: {
-      const Real r = c.radius + reach;
-      return (p - c.center).squaredNorm() < r * r;
-    }
-    case Collider::Shape::kBox:
-      // the distance to a box is at least its largest per-axis distance outside it
-      return ((p - c.center).cwiseAbs() - c.half_extents).maxCoeff() < reach;
-    case Collider::Shape::kCapsule: {
-      // the ball around the capsule
-      const Real r = c.radius + reach + 0.5 * (c.end - c.center).norm();
-      return (p - 0.5 * (c.center + c.end)).squaredNorm() < r * r;
+/// Tells whether a point may be closer than `reach` to a collider's surface, without a root or
+/// a division: nearly every particle of a cloth is far from a small ball (a haptic proxy), and
+/// a full signed distance for each cost a fifth of a step with eight proxies in the scene. What
+/// it needs of the collider is worked out once, not per particle.
+class NearTest {
+ public:
+  NearTest(const Collider& c, Real reach) : shape_(c.shape), reach_(reach) {
+    switch (c.shape) {
+      case Collider::Shape::kPlane:
+        center_ = c.center;
+        axis_ = c.normal;
+        break;
+      case Collider::Shape::kBox:
+        center_ = c.center;
+        axis_ = c.half_extents;
+        break;
+      case Collider::Shape::kSphere:
+        center_ = c.center;
+        radius_sq_ = (c.radius + reach) * (c.radius + reach);
+        break;
+      case Collider::Shape::kCapsule: {
+        // the ball around the capsule
+        center_ = 0.5 * (c.center + c.end);
+        const Real r = c.radius + reach + 0.5 * (c.end - c.center).norm();
+        radius_sq_ = r * r;
+        break;
+      }
     }
   }
-  return true;
-}
+
+  bool operator()(const Vec3& p) const {
+    switch (shape_) {
+      case Collider::Shape::kPlane:
+        return axis_.dot(p - center_) < reach_;
+      case Collider::Shape::kBox:
+        // the distance to a box is at least its largest per-axis distance outside it
+        return ((p - center_).cwiseAbs() - axis_).maxCoeff() < reach_;
+      case Collider::Shape::kSphere:
+      case Collider::Shape::kCapsule:
+        return (p - center_).squaredNorm() < radius_sq_;
+    }
+    return true;
+  }
+
+ private:
+  Collider::Shape shape_;
+  Real reach_;
+  Vec3 center_ = Vec3::Zero();
+  Vec3 axis_ = Vec3::Zero();  ///< plane: its normal; box: its half extents
+  Real radius_sq_ = 0;        ///< sphere, capsule: of the ball around it, grown by the reach
+};
 
 }  // namespace
 
@@ -79,8 +108,9 @@ std::size_t resolve_collisions(std::span<const Collider> colliders, std::span<co
                                Real thickness, ParticleState& state) {
   std::size_t contacts = 0;
   for (const Collider& collider : colliders) {
+    const NearTest may_be_near(collider, thickness);
     for (std::size_t p = 0; p < state.size(); ++p) {
-      if (inv_mass[p] == 0 || !may_be_within(collider, state.x[p], thickness)) continue;
+      if (inv_mass[p] == 0 || !may_be_near(state.x[p])) continue;
       const SignedDistance sd = signed_distance(collider, state.x[p]);
       if (sd.distance >= thickness) continue;
       ++contacts;
