@@ -75,7 +75,13 @@ Session::Session(asio::ip::tcp::socket socket, ServerContext& context)
       context_(context),
       id_(context.next_client_id.fetch_add(1)),
       decoder_(context.options.max_inbound_frame_bytes),
-      frame_timer_(socket_.get_executor()) {}
+      frame_timer_(socket_.get_executor()) {
+  // write_next writes from the handler that has something to send, and must never wait; a
+  // socket that cannot be made so is closed, and the session ends at its first read
+  boost::system::error_code ec;
+  socket_.non_blocking(true, ec);
+  if (ec) socket_.close(ec);
+}
 
 Session::~Session() {
   // a session normally leaves on its strand when its connection ends; one destroyed with the
@@ -225,31 +231,45 @@ bool Session::refuse_hello() {
 }
 
 void Session::write_next() {
-  if (writing_ || closed_ || !socket_.is_open()) return;
-  if (!replies_.empty()) {
-    in_flight_bytes_ = std::move(replies_.front());
-    replies_.pop_front();
-    queued_reply_bytes_ -= in_flight_bytes_.size();
-  } else if (frame_pending_ && !closing_) {
-    in_flight_bytes_.swap(pending_frame_);
-    frame_pending_ = false;
-    frames_.written();
-    ++counters_.frames_sent;
-  } else {
-    if (closing_) shutdown();
-    return;
+  while (!writing_ && !closed_ && socket_.is_open()) {
+    if (!replies_.empty()) {
+      in_flight_bytes_ = std::move(replies_.front());
+      replies_.pop_front();
+      queued_reply_bytes_ -= in_flight_bytes_.size();
+    } else if (frame_pending_ && !closing_) {
+      in_flight_bytes_.swap(pending_frame_);
+      frame_pending_ = false;
+      frames_.written();
+      ++counters_.frames_sent;
+    } else {
+      if (closing_) shutdown();
+      return;
+    }
+    counters_.bytes_sent += in_flight_bytes_.size();
+    // what the kernel takes at once is done here: a write left to finish in a completion
+    // handler would hold the next ForceUpdate until that handler's thread gets a core (with
+    // the physics thread busy, up to a millisecond: the outbound leg's tail)
+    boost::system::error_code ec;
+    const std::size_t written = socket_.write_some(asio::buffer(in_flight_bytes_), ec);
+    if (ec == asio::error::would_block || ec == asio::error::try_again) {
+      ec = {};
+    } else if (ec) {
+      shutdown();
+      return;
+    }
+    if (written == in_flight_bytes_.size()) continue;
+    writing_ = true;
+    asio::async_write(
+        socket_, asio::buffer(in_flight_bytes_) + written,
+        [self = shared_from_this()](const boost::system::error_code& error, std::size_t) {
+          self->writing_ = false;
+          if (error) {
+            self->shutdown();
+            return;
+          }
+          self->write_next();
+        });
   }
-  writing_ = true;
-  counters_.bytes_sent += in_flight_bytes_.size();
-  asio::async_write(socket_, asio::buffer(in_flight_bytes_),
-                    [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
-                      self->writing_ = false;
-                      if (ec) {
-                        self->shutdown();
-                        return;
-                      }
-                      self->write_next();
-                    });
 }
 
 bool Session::join(SceneId id) {
