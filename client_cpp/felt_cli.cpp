@@ -189,6 +189,14 @@ int main(int argc, char** argv) {
                         "More clients that subscribe to frames and never read them");
   scene_options(bench_cmd, common);
 
+  BenchOptions floor;
+  CLI::App* floor_cmd = app.add_subcommand(
+      "bench-floor", "The machine's own round trip: raw loopback TCP at the same rate, no Felt");
+  floor_cmd->add_option("--seconds", floor.seconds, "How long")->capture_default_str();
+  floor_cmd->add_option("--rate", floor.rate, "Messages per second per client")
+      ->capture_default_str();
+  floor_cmd->add_option("--clients", floor.clients, "Clients at once")->capture_default_str();
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (hello_cmd->parsed()) return hello(common);
@@ -228,6 +236,7 @@ int main(int argc, char** argv) {
     if (grab_cmd->parsed()) return grab(common, device);
     if (record_cmd->parsed()) return record(common, device, record_out);
     if (replay_cmd->parsed()) return replay(common, replay_file, tolerance);
+    if (floor_cmd->parsed()) return bench_floor(floor);
     return bench_latency(common, bench);
   } catch (const felt::client::ClientError& e) {
     std::cerr << "felt: " << e.what() << "\n";

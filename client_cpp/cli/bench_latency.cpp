@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "cli/commands.hpp"
+#include "cli/latency_table.hpp"
 #include "cli/progress.hpp"
 
 namespace felt::cli {
@@ -25,22 +26,12 @@ using Clock = std::chrono::steady_clock;
 struct Device {
   client::AsyncClient client;
   std::mutex mutex;
-  std::vector<double> round_trips_us;
-  std::vector<double> server_us;  ///< of each round trip, the server's share (receive to send)
-  // the legs before and after it; both ends read the same steady clock on one host
-  std::vector<double> inbound_us;   ///< client send to server receive
-  std::vector<double> outbound_us;  ///< server send to client read
+  LatencySamples samples;
   std::uint64_t sent = 0;
   std::atomic<std::uint64_t> frames{0};
   std::atomic<std::uint64_t> frame_bytes{0};
   std::atomic<std::uint64_t> skipped{0};
 };
-
-double percentile(std::vector<double>& sorted, double p) {
-  if (sorted.empty()) return 0;
-  const auto at = static_cast<std::size_t>(std::ceil(p * static_cast<double>(sorted.size()))) - 1;
-  return sorted[std::min(at, sorted.size() - 1)];
-}
 
 }  // namespace
 
@@ -55,12 +46,10 @@ int bench_latency(const Common& common, const BenchOptions& o) {
     Device* d = device.get();
     d->client.on_force([d](const v1::ForceUpdate& force, std::uint64_t received_us) {
       std::lock_guard lock(d->mutex);
-      d->round_trips_us.push_back(static_cast<double>(received_us - force.client_time_us()));
-      const double receive_us = 1e-3 * static_cast<double>(force.server_receive_ns());
-      const double send_us = 1e-3 * static_cast<double>(force.server_send_ns());
-      d->server_us.push_back(send_us - receive_us);
-      d->inbound_us.push_back(receive_us - static_cast<double>(force.client_time_us()));
-      d->outbound_us.push_back(static_cast<double>(received_us) - send_us);
+      d->samples.add(static_cast<double>(force.client_time_us()),
+                     1e-3 * static_cast<double>(force.server_receive_ns()),
+                     1e-3 * static_cast<double>(force.server_send_ns()),
+                     static_cast<double>(received_us));
     });
     d->client.on_frame([d, deltas = o.deltas](const v1::Frame& frame) {
       ++d->frames;
@@ -107,33 +96,22 @@ int bench_latency(const Common& common, const BenchOptions& o) {
     slow.push_back(std::move(reader));
   }
 
-  // every device runs its own loop at the rate, each a little beside the others and at its own
-  // phase (independent devices do not tick in the same microsecond)
   Progress progress("bench", o.seconds);
-  const Clock::time_point start = Clock::now() + std::chrono::milliseconds(100);
-  const auto period = std::chrono::duration<double>(1.0 / o.rate);
-  const auto ticks = static_cast<std::uint64_t>(o.seconds * o.rate);
-  std::vector<std::thread> loops;
-  for (int c = 0; c < o.clients; ++c) {
-    loops.emplace_back([&, c] {
-      Device& d = *devices[c];
-      const client::Point at{o.at[0] + 0.01 * c, o.at[1], o.at[2]};
-      for (std::uint64_t k = 0; k < ticks && d.client.connected(); ++k) {
-        const double phase = static_cast<double>(c) / o.clients;
-        std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
-                                                  period * (static_cast<double>(k) + phase)));
-        d.client.send_proxy_update(0, at);
-        ++d.sent;
-        if (c == 0) progress.update(static_cast<double>(k) / o.rate);
-      }
-    });
-  }
-  for (std::thread& loop : loops) loop.join();
+  const Clock::time_point start =
+      run_paced_devices(o.clients, o.rate, static_cast<std::uint64_t>(o.seconds * o.rate),
+                        [&](int c, std::uint64_t k) {
+                          Device& d = *devices[c];
+                          if (!d.client.connected()) return false;
+                          d.client.send_proxy_update(0, {o.at[0] + 0.01 * c, o.at[1], o.at[2]});
+                          ++d.sent;
+                          if (c == 0) progress.update(static_cast<double>(k) / o.rate);
+                          return true;
+                        });
   progress.finish();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the last replies
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
 
-  std::vector<double> all, server, inbound, outbound;
+  LatencySamples all;
   std::uint64_t sent = 0, frames = 0, frame_bytes = 0, skipped = 0;
   std::ofstream csv;
   if (!o.csv.empty()) {
@@ -147,34 +125,22 @@ int bench_latency(const Common& common, const BenchOptions& o) {
     frames += d.frames;
     frame_bytes += d.frame_bytes;
     skipped += d.skipped;
-    all.insert(all.end(), d.round_trips_us.begin(), d.round_trips_us.end());
-    server.insert(server.end(), d.server_us.begin(), d.server_us.end());
-    inbound.insert(inbound.end(), d.inbound_us.begin(), d.inbound_us.end());
-    outbound.insert(outbound.end(), d.outbound_us.begin(), d.outbound_us.end());
+    all.append(d.samples);
     if (csv) {
-      for (double rtt : d.round_trips_us) csv << c << "," << rtt << "\n";
+      for (double rtt : d.samples.round_trips) csv << c << "," << rtt << "\n";
     }
   }
-  std::sort(all.begin(), all.end());
-  std::sort(server.begin(), server.end());
-  std::sort(inbound.begin(), inbound.end());
-  std::sort(outbound.begin(), outbound.end());
-  std::printf(
-      "| clients | slow readers | rate Hz | updates | answered | p50 us | p90 us | "
-      "p99 us | p99.9 us | max us | server p50 us | server p99 us | frames/s per client | "
-      "kB per frame | skipped | inbound p99 us | outbound p99 us |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  std::printf(
-      "| %d | %d | %.0f | %llu | %zu | %.0f | %.0f | %.0f | %.0f | %.0f | %.1f | %.1f | "
-      "%.1f | %.2f | %llu | %.0f | %.0f |\n",
-      o.clients, o.slow_readers, o.rate, static_cast<unsigned long long>(sent), all.size(),
-      percentile(all, 0.5), percentile(all, 0.9), percentile(all, 0.99), percentile(all, 0.999),
-      percentile(all, 1.0), percentile(server, 0.5), percentile(server, 0.99),
-      static_cast<double>(frames) / o.clients / wall,
-      frames ? static_cast<double>(frame_bytes) / frames / 1e3 : 0.0,
-      static_cast<unsigned long long>(skipped), percentile(inbound, 0.99),
-      percentile(outbound, 0.99));
-  return all.size() == sent ? 0 : 1;
+  const std::size_t answered = all.round_trips.size();
+  print_latency_table(
+      {.clients = o.clients,
+       .slow_readers = o.slow_readers,
+       .rate = o.rate,
+       .sent = sent,
+       .frames_per_client_per_second = static_cast<double>(frames) / o.clients / wall,
+       .kb_per_frame = frames ? static_cast<double>(frame_bytes) / frames / 1e3 : 0.0,
+       .skipped = skipped},
+      all);
+  return answered == sent ? 0 : 1;
 }
 
 }  // namespace felt::cli

@@ -109,5 +109,7 @@ struct BenchOptions {
   int slow_readers = 0;  ///< more clients that subscribe at the highest rate and never read
 };
 int bench_latency(const Common& common, const BenchOptions& options);
+// bench_floor.cpp: the same round trip over raw loopback TCP (clients, rate and seconds only)
+int bench_floor(const BenchOptions& options);
 
 }  // namespace felt::cli
