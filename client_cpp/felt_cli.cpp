@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.hpp"
+#include "runtime/thread_latency.hpp"
 
 namespace {
 
@@ -42,6 +43,14 @@ int main(int argc, char** argv) {
   if (const char* token = std::getenv("FELT_TOKEN")) common.token = token;
   app.add_option("--server", common.server, "feltd address HOST:PORT")->capture_default_str();
   app.add_option("--token", common.token, "Token the server requires (default: $FELT_TOKEN)");
+  // every thread of felt is on its haptic path (device loops, the replies' reader), and on a
+  // machine shared with feltd a device loop must preempt the physics thread as soon as it wakes
+  int slice_us = 100;
+  app.add_option("--slice-us", slice_us,
+                 "Time slice felt's threads ask the kernel for (Linux 6.12+; 0: the kernel's)")
+      ->check(CLI::Range(0, 0) | CLI::Range(static_cast<int>(felt::kMinTimeSlice.count()),
+                                            static_cast<int>(felt::kMaxTimeSlice.count())))
+      ->capture_default_str();
 
   CLI::App* hello_cmd =
       app.add_subcommand("hello", "Print the server's version, capabilities and limits");
@@ -196,8 +205,18 @@ int main(int argc, char** argv) {
   floor_cmd->add_option("--rate", floor.rate, "Messages per second per client")
       ->capture_default_str();
   floor_cmd->add_option("--clients", floor.clients, "Clients at once")->capture_default_str();
+  floor_cmd
+      ->add_option("--busy-threads", floor.busy_threads,
+                   "Threads that spin at the kernel's time slice meanwhile, as physics does")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
 
   CLI11_PARSE(app, argc, argv);
+  if (slice_us > 0) {
+    const auto requested = felt::request_time_slice(std::chrono::microseconds(slice_us),
+                                                    felt::SliceInheritance::kAlsoThreadsItStarts);
+    if (!requested) std::cerr << "felt: --slice-us: " << requested.error() << "\n";
+  }
   try {
     if (hello_cmd->parsed()) return hello(common);
     if (scenes_cmd->parsed()) return list_scenes(common);

@@ -14,7 +14,7 @@
 
 #include "net/server.hpp"
 #include "runtime/batch_run.hpp"
-#include "runtime/realtime_thread.hpp"
+#include "runtime/thread_latency.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/scene_overrides.hpp"
 #include "wire/host_port.hpp"
@@ -30,7 +30,8 @@ struct ServeOptions {
   std::vector<std::string> scenes;
   bool status = false;
   unsigned io_threads = 2;
-  int realtime_priority = 0;  ///< SCHED_FIFO priority of the network threads; 0: normal policy
+  int realtime_priority = 0;   ///< SCHED_FIFO priority of the network threads; 0: normal policy
+  int network_slice_us = 100;  ///< time slice the network threads ask for; 0: the kernel's
   felt::net::ServerOptions limits;
 };
 
@@ -149,24 +150,40 @@ int serve(const ServeOptions& options) {
     drain(std::chrono::steady_clock::now() + std::chrono::seconds(2));
   });
   // more than one thread runs the network, so that a client's haptic update is answered
-  // while another thread builds a frame for someone else; under a real-time policy they answer
-  // as soon as an update arrives instead of waiting behind the physics threads for a core
-  bool realtime = false;
-  if (options.realtime_priority > 0) {
-    const auto made = felt::make_this_thread_realtime(options.realtime_priority);
-    realtime = made.has_value();
-    if (realtime) {
-      std::printf("network threads: SCHED_FIFO priority %d\n", options.realtime_priority);
-    } else {
-      std::fprintf(stderr, "feltd: --realtime: %s; the network keeps the normal policy\n",
-                   made.error().c_str());
+  // while another thread builds a frame for someone else; with a short time slice, or under a
+  // real-time policy, they answer as soon as an update arrives instead of waiting behind the
+  // physics threads for a core. Says what it got (or why not) when `report`: once, for the
+  // first thread.
+  const auto schedule_network_thread = [&options](bool report) {
+    if (options.realtime_priority > 0) {
+      const auto made = felt::make_this_thread_realtime(options.realtime_priority);
+      if (made) {
+        if (report) {
+          std::printf("network threads: SCHED_FIFO priority %d\n", options.realtime_priority);
+        }
+        return;
+      }
+      if (report) {
+        std::fprintf(stderr, "feltd: --realtime: %s; the network keeps the normal policy\n",
+                     made.error().c_str());
+      }
     }
-    std::fflush(stdout);
-  }
+    if (options.network_slice_us == 0) return;
+    const auto requested =
+        felt::request_time_slice(std::chrono::microseconds(options.network_slice_us));
+    if (!report) return;
+    if (requested) {
+      std::printf("network threads: %d us time slice\n", options.network_slice_us);
+    } else {
+      std::fprintf(stderr, "feltd: --network-slice-us: %s\n", requested.error().c_str());
+    }
+  };
+  schedule_network_thread(true);
+  std::fflush(stdout);
   std::vector<std::jthread> network;
   for (unsigned t = 1; t < options.io_threads; ++t) {
-    network.emplace_back([&io, realtime, priority = options.realtime_priority] {
-      if (realtime) (void)felt::make_this_thread_realtime(priority);  // allowed for the first
+    network.emplace_back([&io, &schedule_network_thread] {
+      schedule_network_thread(false);
       io.run();
     });
   }
@@ -366,6 +383,13 @@ int main(int argc, char** argv) {
                    "Run the network threads under SCHED_FIFO at this priority (1-99; 0: off) "
                    "so that haptic updates are answered at once on a busy machine")
       ->check(CLI::Range(0, felt::kMaxRealtimePriority))
+      ->capture_default_str();
+  serve_cmd
+      ->add_option("--network-slice-us", serve_options.network_slice_us,
+                   "Time slice the network threads ask the kernel for (Linux 6.12+), so that a "
+                   "haptic update preempts a busy physics thread at once (0: the kernel's)")
+      ->check(CLI::Range(0, 0) | CLI::Range(static_cast<int>(felt::kMinTimeSlice.count()),
+                                            static_cast<int>(felt::kMaxTimeSlice.count())))
       ->capture_default_str();
   serve_cmd->add_option("--token", limits.token,
                         "Shared secret every Hello must carry (default: $FELT_TOKEN)");

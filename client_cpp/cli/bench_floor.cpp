@@ -2,7 +2,8 @@
 // Each simulated device sends a message the size of a ProxyUpdate at the rate, at the same
 // phases, and a reader thread takes the reply the size of a ForceUpdate, as the asynchronous
 // client does; the other end is a process of blocking threads that answer at once. Nothing of
-// Felt is in the way: no protobuf, no event loop, no scene.
+// Felt is in the way: no protobuf, no event loop, no scene. Busy threads at the kernel's time
+// slice stand in for a physics thread, to show what felt's short slice does beside one.
 
 #include <netinet/in.h>
 #include <netinet/tcp.h>
@@ -11,6 +12,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <atomic>
 #include <csignal>
 #include <cstring>
 #include <mutex>
@@ -19,6 +21,7 @@
 #include "cli/commands.hpp"
 #include "cli/latency_table.hpp"
 #include "cli/progress.hpp"
+#include "runtime/thread_latency.hpp"
 
 namespace felt::cli {
 namespace {
@@ -142,6 +145,16 @@ int bench_floor(const BenchOptions& o) {
     connections.push_back(std::move(connection));
   }
 
+  std::atomic<bool> done{false};
+  std::vector<std::thread> busy;
+  for (int b = 0; b < o.busy_threads; ++b) {
+    busy.emplace_back([&done] {
+      (void)request_time_slice(std::chrono::microseconds{0});  // not felt's short one
+      for (volatile std::uint64_t spins = 0; !done.load(std::memory_order_relaxed);) {
+        spins = spins + 1;
+      }
+    });
+  }
   Progress progress("floor", o.seconds);
   run_paced_devices(o.clients, o.rate, static_cast<std::uint64_t>(o.seconds * o.rate),
                     [&](int c, std::uint64_t k) {
@@ -156,6 +169,8 @@ int bench_floor(const BenchOptions& o) {
                     });
   progress.finish();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the last replies
+  done = true;
+  for (std::thread& thread : busy) thread.join();
 
   LatencySamples all;
   std::uint64_t sent = 0;

@@ -107,9 +107,11 @@ struct BenchOptions {
   std::vector<double> at{0, 1.2, 0.01};
   std::string csv;       ///< one line per update: client, rtt_us
   int slow_readers = 0;  ///< more clients that subscribe at the highest rate and never read
+  int busy_threads = 0;  ///< bench-floor: threads that spin meanwhile, as a physics thread steps
 };
 int bench_latency(const Common& common, const BenchOptions& options);
-// bench_floor.cpp: the same round trip over raw loopback TCP (clients, rate and seconds only)
+// bench_floor.cpp: the same round trip over raw loopback TCP (clients, rate, seconds and busy
+// threads only)
 int bench_floor(const BenchOptions& options);
 
 }  // namespace felt::cli

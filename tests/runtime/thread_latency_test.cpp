@@ -1,0 +1,108 @@
+// The haptic path's threads: the slice and priority ranges are checked, a thread gets the slice
+// it asked for, and the threads it starts (a scene's physics started from a network thread) get
+// the default slice and the normal policy back.
+
+#include <sched.h>
+
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "runtime/thread_latency.hpp"
+
+namespace felt {
+namespace {
+
+TEST(TimeSlice, ASliceOutsideTheRangeIsRefusedWithTheRange) {
+  for (const auto slice :
+       {std::chrono::microseconds{-1}, kMinTimeSlice - std::chrono::microseconds{1},
+        kMaxTimeSlice + std::chrono::microseconds{1}}) {
+    const auto requested = request_time_slice(slice);
+    ASSERT_FALSE(requested.has_value()) << slice.count();
+    EXPECT_NE(requested.error().find("0 or in 100 to 100000"), std::string::npos)
+        << requested.error();
+  }
+}
+
+TEST(TimeSlice, AThreadGetsItsSliceAndTheThreadsItStartsTheDefault) {
+  std::chrono::microseconds before{}, mine{}, child{};
+  std::string refused;
+  std::thread([&] {
+    before = time_slice();
+    const auto requested = request_time_slice(std::chrono::microseconds{200});
+    if (!requested) {
+      refused = requested.error();
+      return;
+    }
+    mine = time_slice();
+    std::thread([&] { child = time_slice(); }).join();
+  }).join();
+  ASSERT_TRUE(refused.empty()) << refused;
+  if (before.count() == 0) GTEST_SKIP() << "this kernel (before 6.12) reports no time slice";
+  EXPECT_EQ(mine.count(), 200);
+  EXPECT_EQ(child, before);
+}
+
+TEST(TimeSlice, ZeroGivesTheDefaultBack) {
+  std::chrono::microseconds before{}, after{};
+  std::string refused;
+  std::thread([&] {
+    before = time_slice();
+    const auto requested = request_time_slice(std::chrono::microseconds{250});
+    const auto restored = request_time_slice(std::chrono::microseconds{0});
+    if (!requested || !restored) {
+      refused = requested ? restored.error() : requested.error();
+      return;
+    }
+    after = time_slice();
+  }).join();
+  ASSERT_TRUE(refused.empty()) << refused;
+  if (before.count() == 0) GTEST_SKIP() << "this kernel (before 6.12) reports no time slice";
+  EXPECT_EQ(after, before);
+}
+
+TEST(TimeSlice, AnInheritedSliceGoesToTheThreadsItStarts) {
+  std::chrono::microseconds child{};
+  std::string refused;
+  std::thread([&] {
+    const auto requested =
+        request_time_slice(std::chrono::microseconds{300}, SliceInheritance::kAlsoThreadsItStarts);
+    if (!requested) {
+      refused = requested.error();
+      return;
+    }
+    std::thread([&] { child = time_slice(); }).join();
+  }).join();
+  ASSERT_TRUE(refused.empty()) << refused;
+  if (child.count() == 0) GTEST_SKIP() << "this kernel (before 6.12) reports no time slice";
+  EXPECT_EQ(child.count(), 300);
+}
+
+TEST(RealtimeThread, APriorityOutsideTheRangeIsRefusedWithTheRange) {
+  for (const int priority : {0, -3, kMaxRealtimePriority + 1}) {
+    const auto made = make_this_thread_realtime(priority);
+    ASSERT_FALSE(made.has_value()) << priority;
+    EXPECT_NE(made.error().find("1 to 99"), std::string::npos) << made.error();
+  }
+  EXPECT_EQ(sched_getscheduler(0) & ~SCHED_RESET_ON_FORK, SCHED_OTHER);
+}
+
+TEST(RealtimeThread, ThreadsStartedByARealtimeThreadRunUnderTheNormalPolicy) {
+  int policy = -1, child_policy = -1;
+  std::string refused;
+  std::thread([&] {
+    const auto made = make_this_thread_realtime(5);
+    if (!made) {
+      refused = made.error();
+      return;
+    }
+    policy = sched_getscheduler(0) & ~SCHED_RESET_ON_FORK;
+    std::thread([&] { child_policy = sched_getscheduler(0); }).join();
+  }).join();
+  if (!refused.empty()) GTEST_SKIP() << "this machine refuses real-time threads: " << refused;
+  EXPECT_EQ(policy, SCHED_FIFO);
+  EXPECT_EQ(child_policy, SCHED_OTHER);
+}
+
+}  // namespace
+}  // namespace felt
