@@ -1,10 +1,7 @@
 // felt bench-latency: the ProxyUpdate -> ForceUpdate round trip at haptic rate, for one or
 // several clients at once, each also streaming frames (docs/results/service.md).
 
-#include <algorithm>
 #include <atomic>
-#include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <memory>
 #include <mutex>

@@ -251,9 +251,7 @@ void Session::write_next() {
     // the physics thread busy, up to a millisecond: the outbound leg's tail)
     boost::system::error_code ec;
     const std::size_t written = socket_.write_some(asio::buffer(in_flight_bytes_), ec);
-    if (ec == asio::error::would_block || ec == asio::error::try_again) {
-      ec = {};
-    } else if (ec) {
+    if (ec && ec != asio::error::would_block && ec != asio::error::try_again) {
       shutdown();
       return;
     }
