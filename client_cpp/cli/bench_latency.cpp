@@ -113,7 +113,7 @@ int bench_latency(const Common& common, const BenchOptions& o) {
   std::ofstream csv;
   if (!o.csv.empty()) {
     csv.open(o.csv);
-    csv << "client,round_trip_us\n";
+    csv << "client,sent_us,round_trip_us,inbound_us,outbound_us\n";
   }
   for (int c = 0; c < o.clients; ++c) {
     Device& d = *devices[c];
@@ -123,9 +123,7 @@ int bench_latency(const Common& common, const BenchOptions& o) {
     frame_bytes += d.frame_bytes;
     skipped += d.skipped;
     all.append(d.samples);
-    if (csv) {
-      for (double rtt : d.samples.round_trips) csv << c << "," << rtt << "\n";
-    }
+    if (csv) d.samples.write_csv(csv, c);
   }
   const std::size_t answered = all.round_trips.size();
   print_latency_table(

@@ -19,6 +19,7 @@ double percentile(const std::vector<double>& sorted, double p) {
 
 void LatencySamples::add(double client_send_us, double server_receive_us, double server_send_us,
                          double client_read_us) {
+  sent.push_back(client_send_us);
   round_trips.push_back(client_read_us - client_send_us);
   server.push_back(server_send_us - server_receive_us);
   inbound.push_back(server_receive_us - client_send_us);
@@ -26,10 +27,18 @@ void LatencySamples::add(double client_send_us, double server_receive_us, double
 }
 
 void LatencySamples::append(const LatencySamples& other) {
+  sent.insert(sent.end(), other.sent.begin(), other.sent.end());
   round_trips.insert(round_trips.end(), other.round_trips.begin(), other.round_trips.end());
   server.insert(server.end(), other.server.begin(), other.server.end());
   inbound.insert(inbound.end(), other.inbound.begin(), other.inbound.end());
   outbound.insert(outbound.end(), other.outbound.begin(), other.outbound.end());
+}
+
+void LatencySamples::write_csv(std::ostream& out, int client) const {
+  for (std::size_t k = 0; k < round_trips.size(); ++k) {
+    out << client << ',' << static_cast<std::uint64_t>(sent[k]) << ',' << round_trips[k] << ','
+        << inbound[k] << ',' << outbound[k] << '\n';
+  }
 }
 
 void print_latency_table(const LatencyRun& run, LatencySamples& samples) {

@@ -5,12 +5,14 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <ostream>
 #include <vector>
 
 namespace felt::cli {
 
 /// Round trips and the legs they split into, µs. Both ends read the steady clock of one host.
 struct LatencySamples {
+  std::vector<double> sent;  ///< when each was sent (the steady clock), in arrival order
   std::vector<double> round_trips;
   std::vector<double> server;    ///< the server's share: receive to send
   std::vector<double> inbound;   ///< client send to server receive
@@ -19,6 +21,9 @@ struct LatencySamples {
   void add(double client_send_us, double server_receive_us, double server_send_us,
            double client_read_us);
   void append(const LatencySamples& other);
+  /// One line per round trip, in arrival order, as `client,sent_us,round_trip_us,inbound_us,
+  /// outbound_us`: when a tail happened and whether all clients had it at once.
+  void write_csv(std::ostream& out, int client) const;
 };
 
 /// The rest of a table row: how many were sent and what streamed beside them.
