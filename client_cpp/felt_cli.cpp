@@ -2,10 +2,12 @@
 
 #include <cstdlib>
 #include <iostream>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.hpp"
+#include "runtime/cpu_wakeup_latency.hpp"
 #include "runtime/thread_latency.hpp"
 
 namespace {
@@ -50,6 +52,14 @@ int main(int argc, char** argv) {
                  "Time slice felt's threads ask the kernel for (Linux 6.12+; 0: the kernel's)")
       ->check(CLI::Range(0, 0) | CLI::Range(static_cast<int>(felt::kMinTimeSlice.count()),
                                             static_cast<int>(felt::kMaxTimeSlice.count())))
+      ->capture_default_str();
+  // the device's host wakes for every ForceUpdate: with halting idle cores (a VM) that wake-up
+  // is the outbound leg's tail
+  int wakeup_latency_us = -1;
+  app.add_option("--cpu-wakeup-latency-us", wakeup_latency_us,
+                 "Hold every idle core's wake-up latency at most this while felt runs "
+                 "(system-wide, root; 0: idle cores poll; -1: the system's)")
+      ->check(CLI::Range(-1, static_cast<int>(felt::kMaxCpuWakeupLatency.count())))
       ->capture_default_str();
 
   CLI::App* hello_cmd =
@@ -216,6 +226,15 @@ int main(int argc, char** argv) {
     const auto requested = felt::request_time_slice(std::chrono::microseconds(slice_us),
                                                     felt::SliceInheritance::kAlsoThreadsItStarts);
     if (!requested) std::cerr << "felt: --slice-us: " << requested.error() << "\n";
+  }
+  std::optional<felt::CpuWakeupLatencyLimit> wakeup_limit;
+  if (wakeup_latency_us >= 0) {
+    auto held = felt::CpuWakeupLatencyLimit::hold(std::chrono::microseconds(wakeup_latency_us));
+    if (held) {
+      wakeup_limit = std::move(*held);
+    } else {
+      std::cerr << "felt: --cpu-wakeup-latency-us: " << held.error() << "\n";
+    }
   }
   try {
     if (hello_cmd->parsed()) return hello(common);

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <thread>
 
 #include <CLI/CLI.hpp>
@@ -14,6 +15,7 @@
 
 #include "net/server.hpp"
 #include "runtime/batch_run.hpp"
+#include "runtime/cpu_wakeup_latency.hpp"
 #include "runtime/thread_latency.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/scene_overrides.hpp"
@@ -30,8 +32,9 @@ struct ServeOptions {
   std::vector<std::string> scenes;
   bool status = false;
   unsigned io_threads = 2;
-  int realtime_priority = 0;   ///< SCHED_FIFO priority of the network threads; 0: normal policy
-  int network_slice_us = 100;  ///< time slice the network threads ask for; 0: the kernel's
+  int realtime_priority = 0;       ///< SCHED_FIFO priority of the network threads; 0: normal policy
+  int network_slice_us = 100;      ///< time slice the network threads ask for; 0: the kernel's
+  int cpu_wakeup_latency_us = -1;  ///< held while serving; 0: idle cores poll; -1: the system's
   felt::net::ServerOptions limits;
 };
 
@@ -179,6 +182,18 @@ int serve(const ServeOptions& options) {
     }
   };
   schedule_network_thread(true);
+  std::optional<felt::CpuWakeupLatencyLimit> wakeup_limit;
+  if (options.cpu_wakeup_latency_us >= 0) {
+    auto held =
+        felt::CpuWakeupLatencyLimit::hold(std::chrono::microseconds(options.cpu_wakeup_latency_us));
+    if (held) {
+      wakeup_limit = std::move(*held);
+      std::printf("idle cores: wake-up latency held at %d us%s\n", options.cpu_wakeup_latency_us,
+                  options.cpu_wakeup_latency_us == 0 ? " (they poll)" : "");
+    } else {
+      std::fprintf(stderr, "feltd: --cpu-wakeup-latency-us: %s\n", held.error().c_str());
+    }
+  }
   std::fflush(stdout);
   std::vector<std::jthread> network;
   for (unsigned t = 1; t < options.io_threads; ++t) {
@@ -390,6 +405,12 @@ int main(int argc, char** argv) {
                    "haptic update preempts a busy physics thread at once (0: the kernel's)")
       ->check(CLI::Range(0, 0) | CLI::Range(static_cast<int>(felt::kMinTimeSlice.count()),
                                             static_cast<int>(felt::kMaxTimeSlice.count())))
+      ->capture_default_str();
+  serve_cmd
+      ->add_option("--cpu-wakeup-latency-us", serve_options.cpu_wakeup_latency_us,
+                   "Hold every idle core's wake-up latency at most this (system-wide, root; 0: "
+                   "idle cores poll, so an update wakes the network at once; -1: the system's)")
+      ->check(CLI::Range(-1, static_cast<int>(felt::kMaxCpuWakeupLatency.count())))
       ->capture_default_str();
   serve_cmd->add_option("--token", limits.token,
                         "Shared secret every Hello must carry (default: $FELT_TOKEN)");
