@@ -99,7 +99,7 @@ int serve(const ServeOptions& options) {
     if (context.default_scene == 0) context.default_scene = id;
   }
 
-  asio::io_context io;
+  felt::net::IoPool io(options.io_threads);
   felt::net::Server server(io, context);
   const auto endpoint = server.listen(address->host, address->port);
   if (!endpoint) {
@@ -114,7 +114,7 @@ int serve(const ServeOptions& options) {
   std::fflush(stdout);
 
   // the daemon's own timers and signals take turns on one strand; sessions have theirs
-  const auto control = asio::make_strand(io);
+  const auto control = asio::make_strand(io.main());
   asio::steady_timer status_timer(control);
   std::uint64_t last_haptic_updates = 0;
   std::function<void()> schedule_status = [&] {
@@ -152,8 +152,8 @@ int serve(const ServeOptions& options) {
     server.shutdown();
     drain(std::chrono::steady_clock::now() + std::chrono::seconds(2));
   });
-  // more than one thread runs the network, so that a client's haptic update is answered
-  // while another thread builds a frame for someone else; with a short time slice, or under a
+  // more than one thread runs the network, each its own connections, so that a client's haptic
+  // update is answered while another thread builds a frame for others; with a short slice, or a
   // real-time policy, they answer as soon as an update arrives instead of waiting behind the
   // physics threads for a core. Says what it got (or why not) when `report`: once, for the
   // first thread.
@@ -195,23 +195,14 @@ int serve(const ServeOptions& options) {
     }
   }
   std::fflush(stdout);
-  std::vector<std::jthread> network;
-  for (unsigned t = 1; t < options.io_threads; ++t) {
-    network.emplace_back([&io, &schedule_network_thread] {
-      schedule_network_thread(false);
-      io.run();
-    });
-  }
-  io.run();
-  network.clear();
+  io.run([&schedule_network_thread] { schedule_network_thread(false); });
   // an orderly end: the scenes stop (cancelling what they had queued), the loader finishes,
-  // and every session still open is closed and runs down while the io_context still runs, so
-  // that nothing is destroyed inside its destructor
+  // and every session still open is closed and runs down while the io_contexts still run, so
+  // that nothing is destroyed inside their destructors
   scenes.stop_all();
   context.loader.join();
   server.close_all();
-  io.restart();
-  io.run();
+  io.run_down();
   return 0;
 }
 

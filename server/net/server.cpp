@@ -9,13 +9,13 @@ namespace felt::net {
 namespace asio = boost::asio;
 using asio::ip::tcp;
 
-Server::Server(asio::io_context& io, ServerContext& context)
-    : io_(io), context_(context), acceptor_(asio::make_strand(io)) {}
+Server::Server(IoPool& io, ServerContext& context)
+    : io_(io), context_(context), acceptor_(asio::make_strand(io.main())) {}
 
 std::expected<tcp::endpoint, std::string> Server::listen(const std::string& host,
                                                          std::uint16_t port) {
   boost::system::error_code ec;
-  tcp::resolver resolver(io_);
+  tcp::resolver resolver(io_.main());
   const auto results = resolver.resolve(
       host, std::to_string(port), tcp::resolver::numeric_service | tcp::resolver::passive, ec);
   if (ec || results.empty()) return std::unexpected("cannot resolve " + host + ": " + ec.message());
@@ -33,28 +33,29 @@ std::expected<tcp::endpoint, std::string> Server::listen(const std::string& host
 }
 
 void Server::accept() {
-  // each connection gets its own strand: its handlers never run concurrently
-  acceptor_.async_accept(
-      asio::make_strand(io_), [this](const boost::system::error_code& ec, tcp::socket socket) {
-        if (ec == asio::error::operation_aborted || !acceptor_.is_open()) return;
-        if (!ec) {
-          socket.set_option(tcp::no_delay(true));  // a ForceUpdate must not wait for Nagle
-          auto session = std::make_shared<Session>(std::move(socket), context_);
-          if (context_.clients.load() >= context_.options.max_clients) {
-            session->reject(felt::v1::ERROR_CODE_LIMIT_EXCEEDED,
-                            "the server already serves " +
-                                std::to_string(context_.options.max_clients) + " clients");
-          } else {
-            std::lock_guard lock(sessions_mutex_);
-            std::erase_if(sessions_, [](const std::weak_ptr<Session>& s) { return s.expired(); });
-            sessions_.push_back(session);
-            session->start();
-            // accepted while shutdown() went through the sessions: it hears the goodbye too
-            if (shutting_down_) session->close_gracefully();
-          }
-        }
-        accept();
-      });
+  // each connection gets its own strand on the next network thread's io_context: its
+  // handlers never run concurrently, and all on that thread
+  acceptor_.async_accept(asio::make_strand(io_.next()), [this](const boost::system::error_code& ec,
+                                                               tcp::socket socket) {
+    if (ec == asio::error::operation_aborted || !acceptor_.is_open()) return;
+    if (!ec) {
+      socket.set_option(tcp::no_delay(true));  // a ForceUpdate must not wait for Nagle
+      auto session = std::make_shared<Session>(std::move(socket), context_);
+      if (context_.clients.load() >= context_.options.max_clients) {
+        session->reject(felt::v1::ERROR_CODE_LIMIT_EXCEEDED,
+                        "the server already serves " +
+                            std::to_string(context_.options.max_clients) + " clients");
+      } else {
+        std::lock_guard lock(sessions_mutex_);
+        std::erase_if(sessions_, [](const std::weak_ptr<Session>& s) { return s.expired(); });
+        sessions_.push_back(session);
+        session->start();
+        // accepted while shutdown() went through the sessions: it hears the goodbye too
+        if (shutting_down_) session->close_gracefully();
+      }
+    }
+    accept();
+  });
 }
 
 void Server::shutdown() {

@@ -10,6 +10,7 @@
 
 #include <boost/asio.hpp>
 
+#include "net/io_pool.hpp"
 #include "net/server_context.hpp"
 
 namespace felt::net {
@@ -18,7 +19,8 @@ class Session;
 
 class Server {
  public:
-  Server(boost::asio::io_context& io, ServerContext& context);
+  /// Accepts on the pool's main io_context and serves each connection on the next in turn.
+  Server(IoPool& io, ServerContext& context);
 
   /// Binds and starts accepting; port 0 picks a free port. Returns the bound endpoint.
   std::expected<boost::asio::ip::tcp::endpoint, std::string> listen(const std::string& host,
@@ -36,7 +38,7 @@ class Server {
   /// Forgets the sessions that ended and returns the others; the caller holds sessions_mutex_.
   std::vector<std::shared_ptr<Session>> live_sessions();
 
-  boost::asio::io_context& io_;
+  IoPool& io_;
   ServerContext& context_;
   boost::asio::ip::tcp::acceptor acceptor_;
   std::mutex sessions_mutex_;
