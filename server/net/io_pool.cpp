@@ -39,19 +39,16 @@ void IoPool::stop() {
 
 void IoPool::run_down() {
   guards_.clear();
-  // a session closing on one io_context may post to another (an event to those in its scene)
+  // a session closing on one io_context may post to another it has passed (an event to those in
+  // its scene): again until a pass over all of them finds nothing to do
   std::size_t handled = 0;
   do {
     handled = 0;
     for (const auto& context : contexts_) {
       context->restart();
-      handled += context->poll();
+      handled += context->run();
     }
   } while (handled > 0);
-  for (const auto& context : contexts_) {
-    context->restart();
-    context->run();
-  }
 }
 
 }  // namespace felt::net
