@@ -203,7 +203,9 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--at", bench.at, "Where the devices hold their proxies X,Y,Z")
       ->delimiter(',')
       ->expected(3);
-  bench_cmd->add_option("--csv", bench.csv, "Every round trip (CSV)");
+  bench_cmd->add_option("--csv", bench.csv,
+                        "Every round trip: client, sent_us, round_trip_us, inbound_us, "
+                        "outbound_us (CSV)");
   bench_cmd->add_option("--slow-readers", bench.slow_readers,
                         "More clients that subscribe to frames and never read them");
   scene_options(bench_cmd, common);

@@ -105,7 +105,7 @@ struct BenchOptions {
   bool quantized = false;
   bool deltas = false;
   std::vector<double> at{0, 1.2, 0.01};
-  std::string csv;       ///< one line per update: client, rtt_us
+  std::string csv;       ///< one line per round trip: client, send time, round trip and its legs
   int slow_readers = 0;  ///< more clients that subscribe at the highest rate and never read
   int busy_threads = 0;  ///< bench-floor: threads that spin meanwhile, as a physics thread steps
 };
