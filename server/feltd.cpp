@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <thread>
 
@@ -16,6 +17,7 @@
 #include "net/server.hpp"
 #include "runtime/batch_run.hpp"
 #include "runtime/cpu_wakeup_latency.hpp"
+#include "runtime/idle_core_spinners.hpp"
 #include "runtime/thread_latency.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/scene_overrides.hpp"
@@ -35,6 +37,7 @@ struct ServeOptions {
   int realtime_priority = 0;       ///< SCHED_FIFO priority of the network threads; 0: normal policy
   int network_slice_us = 100;      ///< time slice the network threads ask for; 0: the kernel's
   int cpu_wakeup_latency_us = -1;  ///< held while serving; 0: idle cores poll; -1: the system's
+  int spin_idle_cores_ms = 100;    ///< idle cores spin this long after a haptic update; 0: never
   felt::net::ServerOptions limits;
 };
 
@@ -75,6 +78,7 @@ int serve(const ServeOptions& options) {
     return 2;
   }
   felt::SceneRegistry scenes;
+  std::unique_ptr<felt::IdleCoreSpinners> spinners;  // outlives every session that touches it
   felt::net::ServerContext context{scenes, felt::SceneDirectory(options.scene_dir), options.limits,
                                    FELT_VERSION};
   for (const std::string& file : options.scenes) {
@@ -99,6 +103,18 @@ int serve(const ServeOptions& options) {
     if (context.default_scene == 0) context.default_scene = id;
   }
 
+  // started before the server listens, so that they are there for its first client
+  std::string spinners_error;
+  if (options.spin_idle_cores_ms > 0) {
+    auto started =
+        felt::IdleCoreSpinners::start(std::chrono::milliseconds(options.spin_idle_cores_ms));
+    if (started) {
+      spinners = std::move(*started);
+      context.idle_core_spinners = spinners.get();
+    } else {
+      spinners_error = started.error();
+    }
+  }
   felt::net::IoPool io(options.io_threads);
   felt::net::Server server(io, context);
   const auto endpoint = server.listen(address->host, address->port);
@@ -193,6 +209,14 @@ int serve(const ServeOptions& options) {
     } else {
       std::fprintf(stderr, "feltd: --cpu-wakeup-latency-us: %s\n", held.error().c_str());
     }
+  }
+  if (spinners) {
+    std::printf(
+        "idle cores: kept awake for %d ms after each haptic update (%zu SCHED_IDLE "
+        "spinners)\n",
+        options.spin_idle_cores_ms, spinners->cores());
+  } else if (!spinners_error.empty()) {
+    std::fprintf(stderr, "feltd: --spin-idle-cores-ms: %s\n", spinners_error.c_str());
   }
   std::fflush(stdout);
   io.run([&schedule_network_thread] { schedule_network_thread(false); });
@@ -402,6 +426,12 @@ int main(int argc, char** argv) {
                    "Hold every idle core's wake-up latency at most this (system-wide, root; 0: "
                    "idle cores poll, so an update wakes the network at once; -1: the system's)")
       ->check(CLI::Range(-1, static_cast<int>(felt::kMaxCpuWakeupLatency.count())))
+      ->capture_default_str();
+  serve_cmd
+      ->add_option("--spin-idle-cores-ms", serve_options.spin_idle_cores_ms,
+                   "Keep idle cores awake this long after each haptic update, with a spinning "
+                   "thread per core that yields to any other (no privilege; 0: let them halt)")
+      ->check(CLI::Range(0, 60'000))
       ->capture_default_str();
   serve_cmd->add_option("--token", limits.token,
                         "Shared secret every Hello must carry (default: $FELT_TOKEN)");

@@ -9,10 +9,10 @@
 namespace felt::net {
 namespace {
 
-std::uint64_t steady_ns() {
-  return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                        std::chrono::steady_clock::now().time_since_epoch())
-                                        .count());
+std::uint64_t steady_ns(
+    std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now()) {
+  return static_cast<std::uint64_t>(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count());
 }
 
 /// `settings` over the scene's `defaults`, or why they are not usable.
@@ -95,7 +95,10 @@ void handle_close_proxy(Session& session, std::uint64_t id, const v1::CloseProxy
 }
 
 void handle_proxy_update(Session& session, std::uint64_t id, const v1::ProxyUpdate& update) {
-  const std::uint64_t received = steady_ns();
+  const auto now = std::chrono::steady_clock::now();
+  const std::uint64_t received = steady_ns(now);
+  // the cores stay awake while a device streams, so that its next update wakes no halted core
+  if (IdleCoreSpinners* spinners = session.context().idle_core_spinners) spinners->touch(now);
   const Vec3 position = to_vec3(update.position());
   if (!update.has_position() || !position.allFinite()) {
     session.send_error(id, v1::ERROR_CODE_BAD_REQUEST, "position must be three finite numbers");

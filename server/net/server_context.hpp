@@ -9,6 +9,7 @@
 
 #include <boost/asio/thread_pool.hpp>
 
+#include "runtime/idle_core_spinners.hpp"
 #include "runtime/scene_registry.hpp"
 #include "scene/scene_directory.hpp"
 
@@ -45,6 +46,8 @@ struct ServerContext {
   /// network thread that answers every client's haptic updates
   boost::asio::thread_pool loader{1};
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  /// touched by every haptic update, when the server keeps idle cores awake
+  IdleCoreSpinners* idle_core_spinners = nullptr;
 };
 
 }  // namespace felt::net

@@ -21,6 +21,7 @@ class FeltdProcess {
   FeltdProcess& operator=(const FeltdProcess&) = delete;
 
   std::uint16_t port() const { return port_; }
+  pid_t pid() const { return pid_; }
   const std::string& first_line() const { return first_line_; }
 
   /// Sends `signal` and waits for the exit; the exit status, or nothing on timeout.

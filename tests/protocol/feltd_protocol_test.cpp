@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "feltd_fixture.hpp"
+#include "support/sched_idle_threads.hpp"
 #include "wire/frame_codec.hpp"
 #include "wire/message_codec.hpp"
 
@@ -105,6 +106,45 @@ TEST_F(FeltdTest, ProxyPushedIntoTheClothIsPushedBackOut) {
   EXPECT_EQ(free.force().x(), 0);
   EXPECT_EQ(free.force().y(), 0);
   EXPECT_EQ(free.force().z(), 0);
+}
+
+class FeltdSpinningTest : public FeltdTest {
+ protected:
+  std::vector<std::string> extra_args() const override { return {"--spin-idle-cores-ms", "20"}; }
+};
+
+TEST_F(FeltdSpinningTest, HapticUpdatesKeepIdleCoresAwakeUntilTheyStop) {
+  const std::string pid = std::to_string(server_->pid());
+  const SchedIdleThreads asleep = sched_idle_threads(pid);
+  cpu_set_t cores;  // feltd has the cores this test may run on
+  ASSERT_EQ(sched_getaffinity(0, sizeof cores, &cores), 0);
+  EXPECT_EQ(asleep.count, CPU_COUNT(&cores));
+  Client client;
+  connect(client);
+  client.hello("test");
+  // the spinners take only idle cores: on a machine busy with other tests that may take a while
+  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  while (sched_idle_threads(pid).ticks == asleep.ticks &&
+         std::chrono::steady_clock::now() < deadline) {
+    client.proxy_update(0, {5, 5, 5});
+    std::this_thread::sleep_for(1ms);
+  }
+  ASSERT_GT(sched_idle_threads(pid).ticks, asleep.ticks) << "the idle cores never spun in 20 s";
+  std::this_thread::sleep_for(100ms);  // past the linger
+  const long stopped = sched_idle_threads(pid).ticks;
+  std::this_thread::sleep_for(300ms);
+  // a tick is 4 ms or 10 ms: spinning two cores would take 60 ticks or more
+  EXPECT_LE(sched_idle_threads(pid).ticks - stopped, 2);
+}
+
+TEST_F(FeltdTest, IdleCoresSpinOnlyWhenAsked) {
+  FeltdProcess halting([] {
+    std::vector<std::string> args = default_args();
+    args.insert(args.end(), {"--spin-idle-cores-ms", "0"});
+    return args;
+  }());
+  EXPECT_EQ(sched_idle_threads(std::to_string(halting.pid())).count, 0);
+  EXPECT_GT(sched_idle_threads(std::to_string(server_->pid())).count, 0);  // the default: 100 ms
 }
 
 TEST_F(FeltdTest, AClientFeelsSlidesAlongAndGrabsAMovingCloth) {
