@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <system_error>
 
 namespace felt {
 namespace {
@@ -39,8 +40,14 @@ std::expected<std::unique_ptr<IdleCoreSpinners>, std::string> IdleCoreSpinners::
   for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu) {
     if (!CPU_ISSET(cpu, &allowed)) continue;
     // a spinner sleeps until the first touch, so it never spins before it is pinned and idle
-    std::jthread& thread = spinners->threads_.emplace_back(
-        [raw = spinners.get()](std::stop_token stop) { raw->spin(stop); });
+    try {
+      spinners->threads_.emplace_back(
+          [raw = spinners.get()](std::stop_token stop) { raw->spin(stop); });
+    } catch (const std::system_error& e) {
+      return std::unexpected("starting the spinner of core " + std::to_string(cpu) + ": " +
+                             e.what());
+    }
+    std::jthread& thread = spinners->threads_.back();
     cpu_set_t one;
     CPU_ZERO(&one);
     CPU_SET(cpu, &one);
