@@ -131,7 +131,9 @@ TEST(PenetrationDepth, NearABoxsEdgeTheDepthsStayVerticalUnlessItsEdgesAreSmooth
       }
     }
     EXPECT_GT(cube_contacts, 0u);
-    if (crease == std::numbers::pi) EXPECT_GT(largest_tilt, 0.1);
+    if (crease == std::numbers::pi) {
+      EXPECT_GT(largest_tilt, 0.1);
+    }
   }
 }
 
