@@ -31,57 +31,39 @@ SignedDistance box_distance(const Vec3& p, const Vec3& center, const Vec3& half)
   return {q[axis], normal};
 }
 
-/// Tells whether a point may be closer than `reach` to a collider's surface, without a root or
-/// a division: nearly every particle of a cloth is far from a small ball (a haptic proxy), and
-/// a full signed distance for each cost a fifth of a step with eight proxies in the scene. What
-/// it needs of the collider is worked out once, not per particle.
-class NearTest {
- public:
-  NearTest(const Collider& c, Real reach) : shape_(c.shape), reach_(reach) {
-    switch (c.shape) {
-      case Collider::Shape::kPlane:
-        center_ = c.center;
-        axis_ = c.normal;
-        break;
-      case Collider::Shape::kBox:
-        center_ = c.center;
-        axis_ = c.half_extents;
-        break;
-      case Collider::Shape::kSphere:
-        center_ = c.center;
-        radius_sq_ = (c.radius + reach) * (c.radius + reach);
-        break;
-      case Collider::Shape::kCapsule: {
-        // the ball around the capsule
-        center_ = 0.5 * (c.center + c.end);
-        const Real r = c.radius + reach + 0.5 * (c.end - c.center).norm();
-        radius_sq_ = r * r;
-        break;
-      }
+/// Calls `resolve` with a test of whether a point may be closer than `reach` to a collider's
+/// surface, without a root or a division: nearly every particle of a cloth is far from a small
+/// ball (a haptic proxy), and a full signed distance for each cost a fifth of a step with eight
+/// proxies in the scene. What the test needs of the collider is worked out once, and its shape
+/// chosen once, not per particle.
+template <class Resolve>
+std::size_t with_near_test(const Collider& c, Real reach, Resolve resolve) {
+  switch (c.shape) {
+    case Collider::Shape::kPlane:
+      return resolve([center = c.center, normal = c.normal, reach](const Vec3& p) {
+        return normal.dot(p - center) < reach;
+      });
+    case Collider::Shape::kBox:
+      // the distance to a box is at least its largest per-axis distance outside it
+      return resolve([center = c.center, half = c.half_extents, reach](const Vec3& p) {
+        return ((p - center).cwiseAbs() - half).maxCoeff() < reach;
+      });
+    case Collider::Shape::kSphere: {
+      const Real r = c.radius + reach;
+      return resolve([center = c.center, r_sq = r * r](const Vec3& p) {
+        return (p - center).squaredNorm() < r_sq;
+      });
+    }
+    case Collider::Shape::kCapsule: {
+      // the ball around the capsule
+      const Vec3 center = 0.5 * (c.center + c.end);
+      const Real r = c.radius + reach + 0.5 * (c.end - c.center).norm();
+      return resolve(
+          [center, r_sq = r * r](const Vec3& p) { return (p - center).squaredNorm() < r_sq; });
     }
   }
-
-  bool operator()(const Vec3& p) const {
-    switch (shape_) {
-      case Collider::Shape::kPlane:
-        return axis_.dot(p - center_) < reach_;
-      case Collider::Shape::kBox:
-        // the distance to a box is at least its largest per-axis distance outside it
-        return ((p - center_).cwiseAbs() - axis_).maxCoeff() < reach_;
-      case Collider::Shape::kSphere:
-      case Collider::Shape::kCapsule:
-        return (p - center_).squaredNorm() < radius_sq_;
-    }
-    return true;
-  }
-
- private:
-  Collider::Shape shape_;
-  Real reach_;
-  Vec3 center_ = Vec3::Zero();
-  Vec3 axis_ = Vec3::Zero();  ///< plane: its normal; box: its half extents
-  Real radius_sq_ = 0;        ///< sphere, capsule: of the ball around it, grown by the reach
-};
+  return resolve([](const Vec3&) { return true; });
+}
 
 }  // namespace
 
@@ -108,22 +90,25 @@ std::size_t resolve_collisions(std::span<const Collider> colliders, std::span<co
                                Real thickness, ParticleState& state) {
   std::size_t contacts = 0;
   for (const Collider& collider : colliders) {
-    const NearTest may_be_near(collider, thickness);
-    for (std::size_t p = 0; p < state.size(); ++p) {
-      if (inv_mass[p] == 0 || !may_be_near(state.x[p])) continue;
-      const SignedDistance sd = signed_distance(collider, state.x[p]);
-      if (sd.distance >= thickness) continue;
-      ++contacts;
-      state.x[p] += (thickness - sd.distance) * sd.normal;
-      const Real normal_speed = state.v[p].dot(sd.normal);
-      if (normal_speed >= 0) continue;  // already leaving
-      const Vec3 tangential = state.v[p] - normal_speed * sd.normal;
-      const Real tangential_speed = tangential.norm();
-      // the normal impulse −v_n bounds the friction impulse by μ |v_n|; it may stop the slide
-      const Real slowed = std::max(Real{0}, tangential_speed + collider.friction * normal_speed);
-      state.v[p] =
-          tangential_speed > 0 ? Vec3(tangential * (slowed / tangential_speed)) : Vec3::Zero();
-    }
+    contacts += with_near_test(collider, thickness, [&](const auto& may_be_near) {
+      std::size_t found = 0;
+      for (std::size_t p = 0; p < state.size(); ++p) {
+        if (inv_mass[p] == 0 || !may_be_near(state.x[p])) continue;
+        const SignedDistance sd = signed_distance(collider, state.x[p]);
+        if (sd.distance >= thickness) continue;
+        ++found;
+        state.x[p] += (thickness - sd.distance) * sd.normal;
+        const Real normal_speed = state.v[p].dot(sd.normal);
+        if (normal_speed >= 0) continue;  // already leaving
+        const Vec3 tangential = state.v[p] - normal_speed * sd.normal;
+        const Real tangential_speed = tangential.norm();
+        // the normal impulse −v_n bounds the friction impulse by μ |v_n|; it may stop the slide
+        const Real slowed = std::max(Real{0}, tangential_speed + collider.friction * normal_speed);
+        state.v[p] =
+            tangential_speed > 0 ? Vec3(tangential * (slowed / tangential_speed)) : Vec3::Zero();
+      }
+      return found;
+    });
   }
   return contacts;
 }
