@@ -2,12 +2,14 @@
 
 #include <cstdlib>
 #include <iostream>
+#include <memory>
 #include <optional>
 
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.hpp"
 #include "runtime/cpu_wakeup_latency.hpp"
+#include "runtime/idle_core_spinners.hpp"
 #include "runtime/thread_latency.hpp"
 
 namespace {
@@ -61,6 +63,12 @@ int main(int argc, char** argv) {
                  "(system-wide, root; 0: idle cores poll; -1: the system's)")
       ->check(CLI::Range(-1, static_cast<int>(felt::kMaxCpuWakeupLatency.count())))
       ->capture_default_str();
+  // the same without root; feltd does it while updates arrive, which covers a device on its host
+  bool spin_idle_cores = false;
+  app.add_flag("--spin-idle-cores", spin_idle_cores,
+               "Keep this host's idle cores awake while felt runs, with a spinning thread per "
+               "core that yields to any other (no privilege; for a device on another host than "
+               "feltd)");
 
   CLI::App* hello_cmd =
       app.add_subcommand("hello", "Print the server's version, capabilities and limits");
@@ -236,6 +244,16 @@ int main(int argc, char** argv) {
       wakeup_limit = std::move(*held);
     } else {
       std::cerr << "felt: --cpu-wakeup-latency-us: " << held.error() << "\n";
+    }
+  }
+  std::unique_ptr<felt::IdleCoreSpinners> spinners;
+  if (spin_idle_cores) {
+    auto started = felt::IdleCoreSpinners::start(std::chrono::milliseconds(1));
+    if (started) {
+      spinners = std::move(*started);
+      spinners->spin_until_destroyed();
+    } else {
+      std::cerr << "felt: --spin-idle-cores: " << started.error() << "\n";
     }
   }
   try {

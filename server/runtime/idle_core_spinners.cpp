@@ -84,6 +84,11 @@ void IdleCoreSpinners::touch(Clock::time_point now) {
   wake_.notify_all();
 }
 
+void IdleCoreSpinners::spin_until_destroyed() {
+  // a touch this far ahead is never lingered past (and now minus it does not overflow)
+  touch(Clock::time_point(Clock::duration(std::numeric_limits<Clock::rep>::max() / 2)));
+}
+
 bool IdleCoreSpinners::lingering() const {
   return Clock::now().time_since_epoch().count() - last_touch_.load() <
          Clock::duration(linger_).count();

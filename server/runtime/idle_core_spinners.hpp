@@ -43,6 +43,10 @@ class IdleCoreSpinners {
   /// they spin (a store and a load); wakes them when they sleep.
   void touch(Clock::time_point now);
 
+  /// From now on they spin until destroyed, whatever the touches: for a process whose whole
+  /// life is a haptic loop (felt's device emulator on the device's host).
+  void spin_until_destroyed();
+
   std::size_t cores() const { return threads_.size(); }
   /// The CPU time the spinners have taken so far.
   std::chrono::nanoseconds cpu_time() const;

@@ -1,5 +1,6 @@
 // The idle-core spinners: one per core, under SCHED_IDLE; asleep until touched, spinning for
-// the linger after a touch, asleep again after it; a linger of zero is refused.
+// the linger after a touch, asleep again after it, or spinning until destroyed when asked; a
+// linger of zero is refused.
 
 #include <gtest/gtest.h>
 #include <sched.h>
@@ -66,6 +67,20 @@ TEST(IdleCoreSpinners, ATouchOlderThanTheLingerDoesNotWakeThem) {
   spinners->touch(std::chrono::steady_clock::now() - 1s);
   std::this_thread::sleep_for(200ms);
   EXPECT_LT(spinners->cpu_time(), 5ms);
+}
+
+TEST(IdleCoreSpinners, SpinningUntilDestroyedOutlastsTheLinger) {
+  const auto spinners = started(10ms);
+  ASSERT_TRUE(spinners);
+  spinners->spin_until_destroyed();
+  std::this_thread::sleep_for(50ms);  // well past the linger
+  const auto before = spinners->cpu_time();
+  // they run only on idle cores: on a machine busy with other tests that may take a while
+  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  while (spinners->cpu_time() - before < 2ms && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(2ms);
+  }
+  EXPECT_GE(spinners->cpu_time() - before, 2ms) << "they stopped spinning after the linger";
 }
 
 }  // namespace
