@@ -8,52 +8,69 @@
 namespace felt::wire {
 namespace {
 
-/// The axis after `k` (x, y, z, x, ...), without a division per value.
-std::size_t next_axis(std::size_t k) {
-  return k == 2 ? 0 : k + 1;
+/// Values per block: a whole number of vectors (3) and of SIMD lanes (up to 8), so that a lane
+/// always holds the same axis and the loop over a block vectorizes. Blocks start at value 0, so
+/// value i is in lane i % kBlock, the values past the last whole block included.
+constexpr std::size_t kBlock = 24;
+
+template <typename T>
+using Lanes = std::array<T, kBlock>;
+
+template <typename T, typename U>
+Lanes<T> per_lane(const std::array<U, 3>& axes) {
+  Lanes<T> lanes{};
+  for (std::size_t j = 0; j < kBlock; ++j) lanes[j] = static_cast<T>(axes[j % 3]);
+  return lanes;
+}
+
+/// Calls `each(i, j)` for every value i, in lane j, a block at a time.
+template <typename Each>
+void for_each_lane(std::size_t size, Each&& each) {
+  std::size_t i = 0;
+  for (; i + kBlock <= size; i += kBlock) {
+    for (std::size_t j = 0; j < kBlock; ++j) each(i + j, j);
+  }
+  for (std::size_t j = 0; i < size; ++i, ++j) each(i, j);
 }
 
 }  // namespace
 
 QuantizationBounds bounds_around(std::span<const float> xyz, float margin, float min_margin) {
-  std::array<float, 3> lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
-                          std::numeric_limits<float>::max()};
-  std::array<float, 3> hi{std::numeric_limits<float>::lowest(),
-                          std::numeric_limits<float>::lowest(),
-                          std::numeric_limits<float>::lowest()};
-  // a vector at a time, the three axes in registers; the values past the last whole vector
-  // (none for vertex buffers) after
-  const std::size_t whole = xyz.size() - xyz.size() % 3;
-  for (std::size_t i = 0; i < whole; i += 3) {
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = xyz[i + k] < lo[k] ? xyz[i + k] : lo[k];
-      hi[k] = xyz[i + k] > hi[k] ? xyz[i + k] : hi[k];
-    }
-  }
-  for (std::size_t i = whole, k = 0; i < xyz.size(); ++i, ++k) {
-    lo[k] = std::min(lo[k], xyz[i]);
-    hi[k] = std::max(hi[k], xyz[i]);
-  }
+  Lanes<float> lo, hi;
+  lo.fill(std::numeric_limits<float>::max());
+  hi.fill(std::numeric_limits<float>::lowest());
+  const float* x = xyz.data();
+  for_each_lane(xyz.size(), [&](std::size_t i, std::size_t j) {
+    lo[j] = x[i] < lo[j] ? x[i] : lo[j];
+    hi[j] = x[i] > hi[j] ? x[i] : hi[j];
+  });
   QuantizationBounds bounds;
-  for (int k = 0; k < 3; ++k) {
-    if (lo[k] > hi[k]) lo[k] = hi[k] = 0;  // no vectors
-    const float grow = std::max(margin * (hi[k] - lo[k]), min_margin);
-    bounds.lower[k] = lo[k] - grow;
-    bounds.upper[k] = hi[k] + grow;
+  for (std::size_t k = 0; k < 3; ++k) {
+    float low = lo[k], high = hi[k];
+    for (std::size_t j = k + 3; j < kBlock; j += 3) {
+      low = std::min(low, lo[j]);
+      high = std::max(high, hi[j]);
+    }
+    if (low > high) low = high = 0;  // no vectors
+    const float grow = std::max(margin * (high - low), min_margin);
+    bounds.lower[k] = low - grow;
+    bounds.upper[k] = high + grow;
   }
   return bounds;
 }
 
 bool fits(std::span<const float> xyz, const QuantizationBounds& bounds) {
-  bool inside = true;
-  // written so that a NaN does not fit either
-  const auto in = [&](std::size_t i, int k) {
-    return xyz[i] >= bounds.lower[k] && xyz[i] <= bounds.upper[k];
-  };
-  const std::size_t whole = xyz.size() - xyz.size() % 3;
-  for (std::size_t i = 0; i < whole; i += 3) inside &= in(i, 0) & in(i + 1, 1) & in(i + 2, 2);
-  for (std::size_t i = whole; i < xyz.size(); ++i) inside &= in(i, static_cast<int>(i - whole));
-  return inside;
+  const Lanes<float> lower = per_lane<float>(bounds.lower);
+  const Lanes<float> upper = per_lane<float>(bounds.upper);
+  const float* x = xyz.data();
+  // counted rather than tested, so that the loop has no exit to vectorize around; written so
+  // that a NaN does not fit either
+  unsigned outside = 0;
+  for_each_lane(xyz.size(), [&](std::size_t i, std::size_t j) {
+    const bool in = (x[i] >= lower[j]) & (x[i] <= upper[j]);
+    outside |= in ? 0u : 1u;
+  });
+  return outside == 0;
 }
 
 void quantize(std::span<const float> xyz, const QuantizationBounds& bounds,
@@ -64,19 +81,16 @@ void quantize(std::span<const float> xyz, const QuantizationBounds& bounds,
     const double extent = double{bounds.upper[k]} - bounds.lower[k];
     scale[k] = extent > 0 ? kQuantizedMax / extent : 0;
   }
-  const auto one = [&](std::size_t i, int k) {
-    const double steps = (double{xyz[i]} - bounds.lower[k]) * scale[k];
-    // clamped, then rounded to the nearest step (the NaN-safe way round: NaN becomes 0)
-    const double clamped = steps > 0 ? (steps < kQuantizedMax ? steps : kQuantizedMax) : 0.0;
-    q[i] = static_cast<std::uint16_t>(clamped + 0.5);
-  };
-  const std::size_t whole = xyz.size() - xyz.size() % 3;
-  for (std::size_t i = 0; i < whole; i += 3) {
-    one(i, 0);
-    one(i + 1, 1);
-    one(i + 2, 2);
-  }
-  for (std::size_t i = whole; i < xyz.size(); ++i) one(i, static_cast<int>(i - whole));
+  const Lanes<double> lower = per_lane<double>(bounds.lower);
+  const Lanes<double> scales = per_lane<double>(scale);
+  const float* x = xyz.data();
+  std::uint16_t* out = q.data();
+  for_each_lane(xyz.size(), [&](std::size_t i, std::size_t j) {
+    const double steps = (double{x[i]} - lower[j]) * scales[j];
+    // clamped, then rounded to the nearest step; std::max(0, NaN) is 0
+    const double clamped = std::min(std::max(0.0, steps), double{kQuantizedMax});
+    out[i] = static_cast<std::uint16_t>(static_cast<std::int32_t>(clamped + 0.5));
+  });
 }
 
 void dequantize(std::span<const std::uint16_t> q, const QuantizationBounds& bounds,
@@ -84,9 +98,13 @@ void dequantize(std::span<const std::uint16_t> q, const QuantizationBounds& boun
   xyz.resize(q.size());
   std::array<double, 3> step{};
   for (int k = 0; k < 3; ++k) step[k] = (double{bounds.upper[k]} - bounds.lower[k]) / kQuantizedMax;
-  for (std::size_t i = 0, k = 0; i < q.size(); ++i, k = next_axis(k)) {
-    xyz[i] = static_cast<float>(bounds.lower[k] + q[i] * step[k]);
-  }
+  const Lanes<double> lower = per_lane<double>(bounds.lower);
+  const Lanes<double> steps = per_lane<double>(step);
+  const std::uint16_t* in = q.data();
+  float* out = xyz.data();
+  for_each_lane(q.size(), [&](std::size_t i, std::size_t j) {
+    out[i] = static_cast<float>(lower[j] + in[i] * steps[j]);
+  });
 }
 
 void append_values(std::span<const std::uint16_t> q, std::string& bytes) {

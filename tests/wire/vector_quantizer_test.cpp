@@ -3,7 +3,9 @@
 
 #include "wire/vector_quantizer.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -43,6 +45,48 @@ TEST(VectorQuantizer, BoundsGrowByTheMarginOrAtLeastTheMinimum) {
   EXPECT_FLOAT_EQ(b.lower[1], 0.99f);
   EXPECT_FLOAT_EQ(b.upper[2], 0.01f);
   EXPECT_FALSE(fits(std::vector<float>{3, 1, 0}, b));
+}
+
+// The quantizer works a block of values at a time: every length, whole blocks or not, whole
+// vectors or not, gets each value's own axis, checked against the formula one value at a time.
+TEST(VectorQuantizer, EveryLengthMatchesTheFormulaValueByValue) {
+  const QuantizationBounds bounds{{-1, 0, 10}, {1, 4, 10.5f}};
+  for (std::size_t n = 0; n <= 75; ++n) {
+    std::vector<float> xyz = random_points(n, 1, static_cast<unsigned>(n));
+    xyz.resize(n);                         // any length, not only whole vectors
+    for (std::size_t i = 0; i < n; ++i) {  // from [-1, 1] into the axis's bounds
+      const std::size_t k = i % 3;
+      xyz[i] = bounds.lower[k] + (bounds.upper[k] - bounds.lower[k]) * (xyz[i] + 1) / 2;
+    }
+    if (n > 30) xyz[30] = 100;                                      // above: the top step
+    if (n > 40) xyz[40] = std::numeric_limits<float>::quiet_NaN();  // no value: step 0
+    std::vector<std::uint16_t> q;
+    quantize(xyz, bounds, q);
+    ASSERT_EQ(q.size(), n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t k = i % 3;
+      const double steps =
+          (xyz[i] - double{bounds.lower[k]}) / (double{bounds.upper[k]} - bounds.lower[k]) * 65535;
+      const double expected = std::isnan(steps) ? 0 : std::round(std::clamp(steps, 0.0, 65535.0));
+      EXPECT_NEAR(q[i], expected, 0.5) << "length " << n << " value " << i;
+    }
+    std::vector<float> back;
+    dequantize(q, bounds, back);
+    ASSERT_EQ(back.size(), n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t k = i % 3;
+      EXPECT_FLOAT_EQ(
+          back[i], static_cast<float>(bounds.lower[k] +
+                                      q[i] * (double{bounds.upper[k]} - bounds.lower[k]) / 65535))
+          << "length " << n << " value " << i;
+    }
+    // a NaN or a value outside, in a whole block or past the last, does not fit
+    EXPECT_EQ(fits(xyz, bounds), n <= 30) << "length " << n;
+    if (n > 0 && n <= 30) {
+      xyz[n - 1] = std::numeric_limits<float>::quiet_NaN();
+      EXPECT_FALSE(fits(xyz, bounds)) << "length " << n;
+    }
+  }
 }
 
 TEST(VectorQuantizer, ValuesRoundTripExactly) {
