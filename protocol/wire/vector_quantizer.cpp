@@ -63,7 +63,7 @@ bool fits(std::span<const float> xyz, const QuantizationBounds& bounds) {
   const Lanes<float> lower = per_lane<float>(bounds.lower);
   const Lanes<float> upper = per_lane<float>(bounds.upper);
   const float* x = xyz.data();
-  // counted rather than tested, so that the loop has no exit to vectorize around; written so
+  // gathered rather than tested, so that the loop has no exit to vectorize around; written so
   // that a NaN does not fit either
   unsigned outside = 0;
   for_each_lane(xyz.size(), [&](std::size_t i, std::size_t j) {
@@ -87,7 +87,8 @@ void quantize(std::span<const float> xyz, const QuantizationBounds& bounds,
   std::uint16_t* out = q.data();
   for_each_lane(xyz.size(), [&](std::size_t i, std::size_t j) {
     const double steps = (double{x[i]} - lower[j]) * scales[j];
-    // clamped, then rounded to the nearest step; std::max(0, NaN) is 0
+    // clamped, then rounded to the nearest step; std::max(0, NaN) is 0; through int32, which
+    // has a vector conversion
     const double clamped = std::min(std::max(0.0, steps), double{kQuantizedMax});
     out[i] = static_cast<std::uint16_t>(static_cast<std::int32_t>(clamped + 0.5));
   });
