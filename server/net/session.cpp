@@ -281,6 +281,7 @@ bool Session::join(SceneId id) {
   // a frame of the previous scene that has not gone out yet is dropped
   drop_pending_frame();
   frames_.restart();
+  scene_->prepare_haptics();
   announce(SceneEvent::Kind::kClientJoined);
   return true;
 }

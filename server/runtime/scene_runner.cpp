@@ -414,29 +414,43 @@ std::shared_ptr<const HapticFrame> SceneRunner::haptic_frame() {
   // the physics thread may have stopped making frames: start from a still copy of the latest
   std::lock_guard lock(haptic_mutex_);
   frame = haptic_.load();
-  const auto snapshot = latest();
-  if (!frame || frame->to != snapshot) {
-    frame = make_haptic_frame(snapshot, nullptr, nullptr, haptic_structure_, now);
-    haptic_.store(frame);
+  // unless another thread made one while this one waited for the lock
+  if (!frame || (frame->to != latest() && frame->published < now)) {
+    frame = make_pooled_haptic_frame(nullptr, now);
   }
   return frame;
+}
+
+void SceneRunner::prepare_haptics() {
+  // as if a proxy had been rendered: frames are made from now on for kHapticIdle, the first at
+  // once (a paused scene makes no more), and the pool fills with frames to refit
+  post([this](Scene&) {
+    const SteadyClock::time_point now = SteadyClock::now();
+    last_render_.store(now.time_since_epoch().count());
+    publish_haptics(now);
+  });
 }
 
 void SceneRunner::publish_haptics(SteadyClock::time_point now) {
   const SteadyClock::time_point last(SteadyClock::duration(last_render_.load()));
   if (now - last >= kHapticIdle) return;
   std::lock_guard lock(haptic_mutex_);
+  make_pooled_haptic_frame(haptic_.load().get(), now);
+}
+
+std::shared_ptr<HapticFrame> SceneRunner::make_pooled_haptic_frame(const HapticFrame* previous,
+                                                                   SteadyClock::time_point now) {
   std::shared_ptr<HapticFrame> recycled;
   for (const auto& retired : haptic_pool_) {
     if (retired.use_count() == 1) recycled = retired;
   }
-  const auto previous = haptic_.load();
-  auto frame = make_haptic_frame(latest(), previous.get(), recycled, haptic_structure_, now);
+  auto frame = make_haptic_frame(latest(), previous, recycled, haptic_structure_, now);
   if (!recycled) {
     if (haptic_pool_.size() == kHapticPoolSize) haptic_pool_.erase(haptic_pool_.begin());
     haptic_pool_.push_back(frame);
   }
-  haptic_.store(std::move(frame));
+  haptic_.store(frame);
+  return frame;
 }
 
 RunnerStats SceneRunner::stats() const {

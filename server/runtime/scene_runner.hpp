@@ -170,6 +170,12 @@ class SceneRunner {
   /// The surfaces proxies render against (made now from the latest snapshot if no proxy was
   /// used lately, after which the physics thread keeps them up to date).
   std::shared_ptr<const HapticFrame> haptic_frame();
+  /// A client came that may touch the scene: the physics thread makes haptic frames between
+  /// its steps for a while, as it does while proxies are in use, so that the client's first
+  /// touch finds one, or refits one (a fraction of a millisecond), instead of building the
+  /// structures on the network thread that answers it (5 ms for 20,000 triangles, in which that
+  /// thread's other clients wait).
+  void prepare_haptics();
 
   RunnerStats stats() const;
   /// The scripted devices' latest updates (empty without devices).
@@ -198,6 +204,10 @@ class SceneRunner {
   void publish_bodies();
   /// Makes the haptic frame for the snapshot just published, if proxies are in use.
   void publish_haptics(SteadyClock::time_point now);
+  /// The latest snapshot's frame after `previous` (null: a still one), refitting a pooled frame
+  /// nobody reads any more when there is one; with haptic_mutex_ held.
+  std::shared_ptr<HapticFrame> make_pooled_haptic_frame(const HapticFrame* previous,
+                                                        SteadyClock::time_point now);
   /// Reports rescued and unrecoverable steps not yet reported, at most twice a second.
   void report_health(bool force);
   SceneStatus status() const;
@@ -257,10 +267,11 @@ class SceneRunner {
 
   TriangleQueryKind haptic_structure_;
   Published<HapticFrame> haptic_;
-  /// frames the physics thread made; one nobody else holds any more is refitted, not copied
+  /// the frames made lately; one nobody else holds any more is refitted, not copied
   std::vector<std::shared_ptr<HapticFrame>> haptic_pool_;
-  std::mutex haptic_mutex_;                       ///< held while a haptic frame is made
-  std::atomic<SteadyClock::rep> last_render_{0};  ///< steady-clock ticks of the latest render
+  std::mutex haptic_mutex_;  ///< held while a haptic frame is made
+  /// steady-clock ticks of the latest render (or prepare_haptics)
+  std::atomic<SteadyClock::rep> last_render_{0};
 
   std::unique_ptr<HapticServo> servo_;  ///< null without scripted devices
 

@@ -94,6 +94,21 @@ TEST(SceneRunner, ASingleTouchKeepsPushingUntilTheNextUpdate) {
   EXPECT_GT(runner.latest()->bodies[0].positions[centre].y(), -0.002);
 }
 
+TEST(SceneRunner, AClientsArrivalHasThePhysicsThreadMakeHapticFramesBeforeItsFirstTouch) {
+  // a falling cloth: a frame the physics thread made spans two snapshots, while the one the
+  // first touch of an idle scene makes for itself is still (from = to)
+  SceneRunner runner(flat_cloth_scene(Vec3(0, -9.81, 0)));
+  runner.start();
+  ASSERT_TRUE(wait_for([&] { return runner.latest()->step >= 5; }));
+  runner.prepare_haptics();
+  const std::uint64_t prepared_at = runner.latest()->step;
+  ASSERT_TRUE(wait_for([&] { return runner.latest()->step >= prepared_at + 5; }));
+  const auto frame = runner.haptic_frame();
+  runner.stop();
+  EXPECT_NE(frame->from, frame->to);
+  EXPECT_GT(frame->to->step, prepared_at);
+}
+
 TEST(SceneRunner, ForceIsClampedToTheMaximum) {
   SceneRunner runner(flat_cloth_scene());
   HapticProxy proxy = runner.open_proxy(1);
