@@ -37,7 +37,7 @@ struct ServeOptions {
   int realtime_priority = 0;       ///< SCHED_FIFO priority of the network threads; 0: normal policy
   int network_slice_us = 100;      ///< time slice the network threads ask for; 0: the kernel's
   int cpu_wakeup_latency_us = -1;  ///< held while serving; 0: idle cores poll; -1: the system's
-  int spin_idle_cores_ms = 100;    ///< idle cores spin this long after a haptic update; 0: never
+  int spin_idle_cores_ms = 0;      ///< idle cores spin this long after a haptic update; 0: never
   felt::net::ServerOptions limits;
 };
 
@@ -430,7 +430,8 @@ int main(int argc, char** argv) {
   serve_cmd
       ->add_option("--spin-idle-cores-ms", serve_options.spin_idle_cores_ms,
                    "Keep idle cores awake this long after each haptic update, with a spinning "
-                   "thread per core that yields to any other (no privilege; 0: let them halt)")
+                   "thread per core that yields to any other (no privilege; 0: let them halt; "
+                   "helps one device's median, docs/results/idle_core_spinners.md)")
       ->check(CLI::Range(0, 60'000))
       ->capture_default_str();
   serve_cmd->add_option("--token", limits.token,

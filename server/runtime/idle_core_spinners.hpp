@@ -7,8 +7,11 @@
 // under SCHED_IDLE, which any runnable thread of the normal policy preempts at once and which
 // the kernel counts as an idle core when it places a woken thread. They spin for a while after
 // each touch (a haptic update) and sleep otherwise, so a server nobody touches costs nothing.
-// What they cost while they spin: the idle time of every core, and a few percent of the
-// physics thread's speed where cores share a physical one (a hyperthread, a host's core).
+// What they cost while they spin: the idle time of every core, a few percent of the physics
+// thread's speed where cores share a physical one (a hyperthread, a host's core), and, with
+// several clients, wake-ups placed behind the physics thread: a core with a runnable spinner is
+// not idle to the kernel's wake-up shortcuts and balancing (docs/results/idle_core_spinners.md),
+// which is why feltd leaves them off unless asked.
 
 #include <atomic>
 #include <chrono>
