@@ -19,6 +19,9 @@ Vec3 HapticProxy::starting_point(const HapticSurface& surface, const Vec3& devic
     near.clear();
     body.query->collect(sphere, near);
     if (near.empty()) continue;
+    // in index order, as brute force sees them, so that ties go the same way whatever the
+    // structure
+    std::sort(near.begin(), near.end());
     near_triangles.clear();
     for (const std::uint32_t t : near) {
       if (t < body.triangles.size()) near_triangles.push_back(body.triangles[t]);

@@ -1,6 +1,7 @@
 // The haptic frames the physics thread publishes, as a proxy that updates rarely sees them:
 // the bound on the motion between any two frames of a chain, the snapshots a kept surface
-// holds on to, and a cloth that passes a still device between two of the proxy's updates.
+// holds on to, a new proxy's first contact, and a cloth that passes a still device between two
+// of the proxy's updates.
 
 #include <chrono>
 #include <memory>
@@ -124,6 +125,61 @@ TEST(HapticFrame, AnIdleProxyLetsGoOfTheSnapshotsItKept) {
                                std::chrono::seconds(1));
   EXPECT_TRUE(kept.expired());
   reactions.forget(1);
+}
+
+// A new proxy's first update, overlapping the cloth or not, comes out the same whatever the
+// body's structure: brute force over all the triangles is the reference. One that overlaps it
+// is pushed out on its own side.
+TEST(HapticFrame, ANewProxysFirstContactIsTheSameWithEveryStructureAsWithBruteForce) {
+  const auto surface = square_cloth();
+  const auto bumped = snapshot_at(1, 0, surface, 0.03);
+  ProxySettings settings;
+  settings.radius = 0.03;
+  settings.stiffness = 1000;
+  settings.max_force = 50;
+  const SteadyClock::time_point now = SteadyClock::now();
+  const auto reference =
+      make_haptic_frame(bumped, nullptr, nullptr, TriangleQueryKind::kBruteForce, now);
+  ReactionAccumulator reactions;
+  std::uint64_t key = 0;
+  const auto first_update = [&](const HapticFrame& frame, const Vec3& device) {
+    HapticProxy proxy(++key, settings);
+    const ProxyOutput out = proxy.update(frame.surface_at(1), 0, device, 0, reactions);
+    reactions.forget(key);
+    return out.contact;
+  };
+  int overlapping = 0;
+  for (const TriangleQueryKind kind : {TriangleQueryKind::kBvhAabb4, TriangleQueryKind::kBvhSphere2,
+                                       TriangleQueryKind::kSpatialHash}) {
+    const auto frame = make_haptic_frame(bumped, nullptr, nullptr, kind, now);
+    for (Real x = -0.5; x <= 0.5; x += 0.125) {
+      for (Real y = -0.5; y <= 0.5; y += 0.125) {
+        for (const Real z : {-0.025, -0.01, 0.005, 0.02, 0.035}) {
+          const Vec3 device(x, y, z);
+          const HapticContact expected = first_update(*reference, device);
+          const HapticContact contact = first_update(*frame, device);
+          EXPECT_EQ(contact.proxy, expected.proxy)
+              << to_string(kind) << " at " << device.transpose();
+          EXPECT_EQ(contact.force, expected.force)
+              << to_string(kind) << " at " << device.transpose();
+          if (expected.in_contact) ++overlapping;
+        }
+      }
+    }
+  }
+  EXPECT_GT(overlapping, 100);
+  // 1 cm from the flat part with a 3 cm sphere, on either side (the normals point up): pushed
+  // out to touch it on the device's side, 1000 N/m · 2 cm
+  const auto flat = make_haptic_frame(snapshot_at(1, 0, surface), nullptr, nullptr,
+                                      TriangleQueryKind::kBvhAabb4, now);
+  for (const Real side : {1.0, -1.0}) {
+    const HapticContact pushed = first_update(*flat, Vec3(0.23, 0.26, side * 0.01));
+    ASSERT_TRUE(pushed.in_contact) << side;
+    EXPECT_NEAR(pushed.proxy.z(), side * 0.03, 1e-12);
+    EXPECT_NEAR(pushed.force.z(), side * 20, 1e-9);
+    EXPECT_NEAR(pushed.force.x(), 0, 1e-12);
+    EXPECT_NEAR(pushed.force.y(), 0, 1e-12);
+  }
 }
 
 // The cloth comes down 1 cm per frame from 2.5 cm above a still device; the proxy is updated
