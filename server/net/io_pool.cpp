@@ -1,7 +1,10 @@
 #include "net/io_pool.hpp"
 
 #include <algorithm>
+#include <string>
 #include <thread>
+
+#include "runtime/thread_name.hpp"
 
 namespace felt::net {
 
@@ -27,6 +30,8 @@ void IoPool::run(const std::function<void()>& on_thread_start) {
       on_thread_start();
       contexts_[t]->run();
     });
+    // the first io_context runs on the process's main thread, which keeps the process's name
+    name_thread(threads.back().native_handle(), "felt-net-" + std::to_string(t));
   }
   contexts_.front()->run();
   // the main io_context ran out of work or was stopped: so are the others

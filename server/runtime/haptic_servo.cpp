@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 
+#include "runtime/thread_name.hpp"
+
 namespace felt {
 
 HapticServo::HapticServo(ScriptedDevices devices, Real rate_hz, FrameSource frames,
@@ -20,6 +22,7 @@ HapticServo::~HapticServo() {
 void HapticServo::start() {
   if (thread_.joinable()) return;
   thread_ = std::jthread([this](std::stop_token stop) { run(stop); });
+  name_thread(thread_.native_handle(), "felt-servo");
 }
 
 void HapticServo::stop() {

@@ -5,7 +5,10 @@
 
 #include <cerrno>
 #include <cstring>
+#include <string>
 #include <system_error>
+
+#include "runtime/thread_name.hpp"
 
 namespace felt {
 namespace {
@@ -48,6 +51,7 @@ std::expected<std::unique_ptr<IdleCoreSpinners>, std::string> IdleCoreSpinners::
                              e.what());
     }
     std::jthread& thread = spinners->threads_.back();
+    name_thread(thread.native_handle(), "felt-spin-" + std::to_string(cpu));
     cpu_set_t one;
     CPU_ZERO(&one);
     CPU_SET(cpu, &one);

@@ -5,6 +5,8 @@
 #include <mutex>
 #include <optional>
 
+#include "runtime/thread_name.hpp"
+
 namespace felt {
 namespace {
 
@@ -82,6 +84,7 @@ SceneRunner::~SceneRunner() {
 void SceneRunner::start() {
   if (thread_.joinable()) return;
   thread_ = std::jthread([this](std::stop_token stop) { run(stop); });
+  name_thread(thread_.native_handle(), "felt-physics");
   if (servo_) servo_->start();
 }
 
