@@ -425,13 +425,10 @@ std::shared_ptr<const HapticFrame> SceneRunner::haptic_frame() {
 }
 
 void SceneRunner::prepare_haptics() {
-  // as if a proxy had been rendered: frames are made from now on for kHapticIdle, the first at
-  // once (a paused scene makes no more), and the pool fills with frames to refit
-  post([this](Scene&) {
-    const SteadyClock::time_point now = SteadyClock::now();
-    last_render_.store(now.time_since_epoch().count());
-    publish_haptics(now);
-  });
+  // what a render does first, between two steps: a still frame of the latest snapshot if the
+  // proxies were idle (none stale to interpolate from), and frames from the steps after it for
+  // kHapticIdle, which fill the pool with frames to refit
+  post([this](Scene&) { haptic_frame(); });
 }
 
 void SceneRunner::publish_haptics(SteadyClock::time_point now) {
