@@ -19,6 +19,7 @@
 #include "runtime/cpu_wakeup_latency.hpp"
 #include "runtime/idle_core_spinners.hpp"
 #include "runtime/thread_latency.hpp"
+#include "runtime/thread_name.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/scene_overrides.hpp"
 #include "wire/host_port.hpp"
@@ -81,6 +82,9 @@ int serve(const ServeOptions& options) {
   std::unique_ptr<felt::IdleCoreSpinners> spinners;  // outlives every session that touches it
   felt::net::ServerContext context{scenes, felt::SceneDirectory(options.scene_dir), options.limits,
                                    FELT_VERSION};
+  // named as feltd's other threads are, for top -H, perf and scripts/trace-round-trips
+  asio::post(context.loader, [] { felt::name_thread(pthread_self(), "felt-loader"); });
+  asio::post(context.frame_encoder, [] { felt::name_thread(pthread_self(), "felt-frames"); });
   for (const std::string& file : options.scenes) {
     auto document = felt::read_scene_json(file);
     auto scene = document ? felt::load_scene(*document, scene_options(options.scene_dir))
@@ -220,11 +224,13 @@ int serve(const ServeOptions& options) {
   }
   std::fflush(stdout);
   io.run([&schedule_network_thread] { schedule_network_thread(false); });
-  // an orderly end: the scenes stop (cancelling what they had queued), the loader finishes,
-  // and every session still open is closed and runs down while the io_contexts still run, so
-  // that nothing is destroyed inside their destructors
+  // an orderly end: the scenes stop (cancelling what they had queued), the loader and the frame
+  // encoder finish (a frame planned after this is never encoded: its session is closing), and
+  // every session still open is closed and runs down while the io_contexts still run, so that
+  // nothing is destroyed inside their destructors
   scenes.stop_all();
   context.loader.join();
+  context.frame_encoder.join();
   server.close_all();
   io.run_down();
   return 0;

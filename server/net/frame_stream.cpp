@@ -42,6 +42,35 @@ void put_values(const std::vector<std::uint16_t>& q, const std::vector<std::uint
   }
 }
 
+void put_quantized(const BodySnapshot& body, bool with_normals, const FrameStream::BodyRecord* base,
+                   FrameStream::BodyRecord& record, felt::v1::BodyFrame& out) {
+  // one buffer per thread that encodes, kept: a frame then allocates nothing for it
+  thread_local std::vector<float> scratch;
+  to_floats(body.positions, scratch);
+  // a delta keeps its base's bounds; a body that moved out of them gets a key frame
+  const bool delta =
+      base && base->positions.size() == scratch.size() && wire::fits(scratch, base->bounds);
+  record.bounds =
+      delta ? base->bounds : wire::bounds_around(scratch, kBoundsMargin, kMinBoundsMargin);
+  wire::quantize(scratch, record.bounds, record.positions);
+  felt::v1::QuantizedVectors& positions = *out.mutable_quantized_positions();
+  put_bounds(record.bounds, positions);
+  put_values(record.positions, delta ? &base->positions : nullptr, positions);
+  if (with_normals) {
+    to_floats(body.normals, scratch);
+    const wire::QuantizationBounds unit{{-1, -1, -1}, {1, 1, 1}};
+    wire::quantize(scratch, unit, record.normals);
+    felt::v1::QuantizedVectors& normals = *out.mutable_quantized_normals();
+    put_bounds(unit, normals);
+    put_values(record.normals, delta ? &base->normals : nullptr, normals);
+  }
+}
+
+bool wanted(const FrameOptions& options, BodyId id) {
+  return options.bodies.empty() ||
+         std::binary_search(options.bodies.begin(), options.bodies.end(), id);
+}
+
 }  // namespace
 
 const FrameStream::BodyRecord* FrameStream::FrameRecord::find(BodyId id) const {
@@ -71,75 +100,78 @@ void FrameStream::restart() {
   base_.reset();
 }
 
-bool FrameStream::wanted(BodyId id) const {
-  return options_.bodies.empty() ||
-         std::binary_search(options_.bodies.begin(), options_.bodies.end(), id);
-}
-
-void FrameStream::put_quantized(const BodySnapshot& body, const BodyRecord* base,
-                                BodyRecord& record, felt::v1::BodyFrame& out) {
-  to_floats(body.positions, scratch_);
-  // a delta keeps its base's bounds; a body that moved out of them gets a key frame
-  const bool delta =
-      base && base->positions.size() == scratch_.size() && wire::fits(scratch_, base->bounds);
-  record.bounds =
-      delta ? base->bounds : wire::bounds_around(scratch_, kBoundsMargin, kMinBoundsMargin);
-  wire::quantize(scratch_, record.bounds, record.positions);
-  felt::v1::QuantizedVectors& positions = *out.mutable_quantized_positions();
-  put_bounds(record.bounds, positions);
-  put_values(record.positions, delta ? &base->positions : nullptr, positions);
-  if (options_.normals) {
-    to_floats(body.normals, scratch_);
-    const wire::QuantizationBounds unit{{-1, -1, -1}, {1, 1, 1}};
-    wire::quantize(scratch_, unit, record.normals);
-    felt::v1::QuantizedVectors& normals = *out.mutable_quantized_normals();
-    put_bounds(unit, normals);
-    put_values(record.normals, delta ? &base->normals : nullptr, normals);
-  }
-}
-
-void FrameStream::build(const SceneSnapshot& snapshot, SceneId scene, std::uint64_t skipped,
-                        felt::v1::Frame& frame) {
+FrameStream::Plan FrameStream::plan(std::shared_ptr<const SceneSnapshot> snapshot, SceneId scene,
+                                    std::uint64_t skipped) {
   building_ = {};
-  building_.sequence = next_sequence_++;
   building_topology_.clear();
-  last_version_ = snapshot.version;
-  frame.set_scene_id(scene);
+  last_version_ = snapshot->version;
+  Plan plan;
+  plan.scene = scene;
+  plan.skipped = skipped;
+  plan.sequence = next_sequence_++;
+  plan.options = options_;
+  if (base_ && plan.sequence - base_->sequence > kMaxBaseAge) base_.reset();
+  if (options_.quantized && options_.deltas) plan.base = base_;
+  for (const BodySnapshot& body : snapshot->bodies) {
+    if (!wanted(options_, body.body_id)) continue;
+    const Topology topology{body.body_id, body.surface};
+    if (std::find(topology_sent_.begin(), topology_sent_.end(), topology) != topology_sent_.end()) {
+      continue;
+    }
+    plan.with_triangles.push_back(body.body_id);
+    std::erase_if(topology_sent_, [&](const Topology& t) { return t.body_id == body.body_id; });
+    topology_sent_.push_back(topology);
+    building_topology_.push_back(topology);
+  }
+  // bodies that are gone need their triangles again should their id ever come back
+  std::erase_if(topology_sent_, [&](const Topology& t) { return !snapshot->find(t.body_id); });
+  plan.snapshot = std::move(snapshot);
+  return plan;
+}
+
+void FrameStream::encode(const Plan& plan, felt::v1::Frame& frame, FrameRecord& record) {
+  const SceneSnapshot& snapshot = *plan.snapshot;
+  const FrameOptions& options = plan.options;
+  record = {};
+  record.sequence = plan.sequence;
+  frame.set_scene_id(plan.scene);
   frame.set_step(snapshot.step);
   frame.set_sim_time(snapshot.sim_time);
-  frame.set_skipped(skipped);
-  frame.set_sequence(building_.sequence);
-  if (base_ && building_.sequence - base_->sequence > kMaxBaseAge) base_.reset();
-  const FrameRecord* base = options_.quantized && options_.deltas && base_ ? &*base_ : nullptr;
-  if (base) frame.set_base_sequence(base->sequence);
+  frame.set_skipped(plan.skipped);
+  frame.set_sequence(plan.sequence);
+  if (plan.base) frame.set_base_sequence(plan.base->sequence);
   for (const BodySnapshot& body : snapshot.bodies) {
-    if (!wanted(body.body_id)) continue;
+    if (!wanted(options, body.body_id)) continue;
     felt::v1::BodyFrame* out = frame.add_bodies();
     out->set_body_id(body.body_id);
     out->set_name(body.name);
     out->set_vertex_count(static_cast<std::uint32_t>(body.positions.size()));
-    if (options_.quantized) {
-      put_quantized(body, base ? base->find(body.body_id) : nullptr,
-                    building_.bodies.emplace_back(), *out);
-      building_.bodies.back().body_id = body.body_id;
+    if (options.quantized) {
+      BodyRecord& quantized = record.bodies.emplace_back();
+      put_quantized(body, options.normals, plan.base ? plan.base->find(body.body_id) : nullptr,
+                    quantized, *out);
+      quantized.body_id = body.body_id;
     } else {
       put_floats(body.positions, *out->mutable_positions());
-      if (options_.normals) put_floats(body.normals, *out->mutable_normals());
+      if (options.normals) put_floats(body.normals, *out->mutable_normals());
     }
-    const Topology topology{body.body_id, body.surface};
-    if (std::find(topology_sent_.begin(), topology_sent_.end(), topology) == topology_sent_.end()) {
+    if (std::find(plan.with_triangles.begin(), plan.with_triangles.end(), body.body_id) !=
+        plan.with_triangles.end()) {
       auto& triangles = *out->mutable_triangles();
       triangles.Reserve(static_cast<int>(3 * body.triangles().size()));
       for (const Triangle& t : body.triangles()) {
         for (std::uint32_t corner : t) triangles.AddAlreadyReserved(corner);
       }
-      std::erase_if(topology_sent_, [&](const Topology& t) { return t.body_id == body.body_id; });
-      topology_sent_.push_back(topology);
-      building_topology_.push_back(topology);
     }
   }
-  // bodies that are gone need their triangles again should their id ever come back
-  std::erase_if(topology_sent_, [&](const Topology& t) { return !snapshot.find(t.body_id); });
+}
+
+void FrameStream::build(std::shared_ptr<const SceneSnapshot> snapshot, SceneId scene,
+                        std::uint64_t skipped, felt::v1::Frame& frame) {
+  const Plan planned = plan(std::move(snapshot), scene, skipped);
+  FrameRecord record;
+  encode(planned, frame, record);
+  encoded(std::move(record));
 }
 
 void FrameStream::dropped() {
@@ -158,14 +190,14 @@ std::size_t FrameStream::FrameRecord::bytes() const {
 
 std::size_t FrameStream::history_bytes() const {
   std::size_t total = base_ ? base_->bytes() : 0;
-  for (const FrameRecord& frame : written_) total += frame.bytes();
+  for (const auto& frame : written_) total += frame->bytes();
   return total;
 }
 
 void FrameStream::written() {
   building_topology_.clear();
   if (!options_.quantized || !options_.deltas) return;
-  written_.push_back(std::move(building_));
+  written_.push_back(std::make_shared<const FrameRecord>(std::move(building_)));
   building_ = {};
   // the oldest go first: an acknowledgement names a recent frame
   while (!written_.empty() &&
@@ -176,11 +208,12 @@ void FrameStream::written() {
 
 bool FrameStream::acknowledge(std::uint64_t sequence) {
   if (sequence == 0 || sequence >= next_sequence_) return false;
-  const auto it = std::find_if(written_.begin(), written_.end(),
-                               [sequence](const FrameRecord& f) { return f.sequence == sequence; });
+  const auto it = std::find_if(written_.begin(), written_.end(), [sequence](const auto& frame) {
+    return frame->sequence == sequence;
+  });
   // a frame already forgotten (acknowledged late) or dropped unsent cannot be a base
   if (it == written_.end()) return true;
-  if (!base_ || base_->sequence < sequence) base_ = *it;
+  if (!base_ || base_->sequence < sequence) base_ = *it;  // shared, not copied
   written_.erase(written_.begin(), it);
   while (!written_.empty() && history_bytes() > max_history_bytes_) written_.pop_front();
   if (base_ && base_->bytes() > max_history_bytes_) base_.reset();

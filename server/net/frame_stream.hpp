@@ -1,12 +1,13 @@
 #pragma once
 // One session's frame subscription: which bodies, how they are encoded (float32, or 16-bit
 // quantized and optionally as deltas against the last frame the client acknowledged), and
-// which triangles the client already has. Snapshot -> felt.v1.Frame; no sockets.
+// which triangles the client already has. Snapshot -> felt.v1.Frame; no sockets. A frame is
+// planned on the session's thread and encoded on any (the server's frame encoder), so that
+// encoding never holds up the haptic updates that thread answers.
 
 #include <cstdint>
 #include <deque>
 #include <memory>
-#include <optional>
 #include <vector>
 
 #include "felt/v1/frames.pb.h"
@@ -44,8 +45,41 @@ class FrameStream {
 
   /// Whether `snapshot` is newer than the last frame built.
   bool has_new(const SceneSnapshot& snapshot) const { return snapshot.version != last_version_; }
-  /// Builds the next frame from `snapshot`; `skipped` frames were dropped before it.
-  void build(const SceneSnapshot& snapshot, SceneId scene, std::uint64_t skipped,
+
+  struct BodyRecord {
+    BodyId body_id = 0;
+    wire::QuantizationBounds bounds;
+    std::vector<std::uint16_t> positions;
+    std::vector<std::uint16_t> normals;
+  };
+  /// What a later delta needs of a frame: its quantized values.
+  struct FrameRecord {
+    std::uint64_t sequence = 0;
+    std::vector<BodyRecord> bodies;
+    const BodyRecord* find(BodyId id) const;
+    std::size_t bytes() const;
+  };
+  /// The next frame, decided on the session's thread: everything its encoding reads, so that
+  /// it can be encoded on another thread while the stream goes on.
+  struct Plan {
+    std::shared_ptr<const SceneSnapshot> snapshot;
+    SceneId scene = 0;
+    std::uint64_t skipped = 0;
+    std::uint64_t sequence = 0;
+    FrameOptions options;
+    std::shared_ptr<const FrameRecord> base;  ///< the deltas' base; null: values
+    std::vector<BodyId> with_triangles;       ///< the bodies whose triangles this frame carries
+  };
+  /// Plans the next frame from `snapshot`; `skipped` frames were dropped before it. The frame
+  /// counts as built from here on (has_new, dropped).
+  Plan plan(std::shared_ptr<const SceneSnapshot> snapshot, SceneId scene, std::uint64_t skipped);
+  /// Encodes `plan` as `frame`, and what later deltas need of it as `record`. Touches no
+  /// stream: any thread.
+  static void encode(const Plan& plan, felt::v1::Frame& frame, FrameRecord& record);
+  /// The frame planned last was encoded as `record`.
+  void encoded(FrameRecord record) { building_ = std::move(record); }
+  /// plan, encode and encoded in a row.
+  void build(std::shared_ptr<const SceneSnapshot> snapshot, SceneId scene, std::uint64_t skipped,
              felt::v1::Frame& frame);
   /// The frame last built was replaced before it was sent: the triangles it carried must go
   /// again, and it cannot be a delta base.
@@ -67,23 +101,6 @@ class FrameStream {
   static constexpr std::uint64_t kMaxBaseAge = 12;
 
  private:
-  struct BodyRecord {
-    BodyId body_id = 0;
-    wire::QuantizationBounds bounds;
-    std::vector<std::uint16_t> positions;
-    std::vector<std::uint16_t> normals;
-  };
-  struct FrameRecord {
-    std::uint64_t sequence = 0;
-    std::vector<BodyRecord> bodies;
-    const BodyRecord* find(BodyId id) const;
-    std::size_t bytes() const;
-  };
-
-  bool wanted(BodyId id) const;
-  void put_quantized(const BodySnapshot& body, const BodyRecord* base, BodyRecord& record,
-                     felt::v1::BodyFrame& out);
-
   std::size_t max_history_bytes_;
   bool active_ = false;
   FrameOptions options_;
@@ -100,9 +117,9 @@ class FrameStream {
   std::vector<Topology> topology_sent_;
   std::vector<Topology> building_topology_;  ///< those the last frame carries
   FrameRecord building_;                     ///< the last frame built
-  std::deque<FrameRecord> written_;
-  std::optional<FrameRecord> base_;  ///< the latest acknowledged frame still kept
-  std::vector<float> scratch_;
+  /// shared with the plans that use them as bases, which may be encoding on another thread
+  std::deque<std::shared_ptr<const FrameRecord>> written_;
+  std::shared_ptr<const FrameRecord> base_;  ///< the latest acknowledged frame still kept
 };
 
 }  // namespace felt::net

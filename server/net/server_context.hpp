@@ -1,6 +1,6 @@
 #pragma once
 // What every session of a server shares: the scenes, the scene directory, the limits and the
-// worker that loads scenes and bodies off the network thread.
+// workers that load scenes and bodies and encode frames off the network threads.
 
 #include <atomic>
 #include <chrono>
@@ -45,6 +45,10 @@ struct ServerContext {
   /// scene and body files are read and built here, so that a big one does not hold up the
   /// network thread that answers every client's haptic updates
   boost::asio::thread_pool loader{1};
+  /// every session's frames are encoded here and its network thread only plans and writes
+  /// them: encoding a 10,000-vertex body's 16-bit deltas takes 70 us (frame_stream_bench), in
+  /// which the haptic updates of every client on that thread would wait
+  boost::asio::thread_pool frame_encoder{1};
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   /// touched by every haptic update, when the server keeps idle cores awake
   IdleCoreSpinners* idle_core_spinners = nullptr;

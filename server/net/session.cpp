@@ -297,6 +297,8 @@ void Session::announce(SceneEvent::Kind kind) {
 void Session::drop_pending_frame() {
   frame_pending_ = false;
   pending_frame_.clear();
+  frame_encoding_ = false;
+  ++frame_generation_;
 }
 
 void Session::forget_scene() {
@@ -395,8 +397,9 @@ void Session::on_frame_tick() {
     return;
   }
   forget_idle_proxy_surfaces(SteadyClock::now());
-  if (scene_) {
-    const auto snapshot = scene_->latest();
+  // a frame still with the encoder (a busy server) is the latest one: no other is planned
+  if (scene_ && !frame_encoding_) {
+    auto snapshot = scene_->latest();
     if (frames_.has_new(*snapshot)) {
       std::uint64_t skipped = 0;
       if (frame_pending_) {
@@ -404,18 +407,47 @@ void Session::on_frame_tick() {
         // it carried, which the next frame must carry instead
         skipped = pending_frame_skipped_ + 1;
         frames_.dropped();
+        frame_pending_ = false;
+        pending_frame_.clear();
         ++counters_.frames_skipped;
       }
-      v1::ServerMessage message;
-      frames_.build(*snapshot, scene_id_, skipped, *message.mutable_frame());
-      pending_frame_.clear();
-      wire::append_message(pending_frame_, message);
-      frame_pending_ = true;
-      pending_frame_skipped_ = skipped;
-      write_next();
+      encode_frame(frames_.plan(std::move(snapshot), scene_id_, skipped));
     }
   }
   schedule_frame();
+}
+
+void Session::encode_frame(FrameStream::Plan plan) {
+  frame_encoding_ = true;
+  asio::post(context_.frame_encoder, [weak = weak_from_this(), plan = std::move(plan),
+                                      generation = frame_generation_] {
+    v1::ServerMessage message;
+    FrameStream::FrameRecord record;
+    FrameStream::encode(plan, *message.mutable_frame(), record);
+    std::string bytes;
+    wire::append_message(bytes, message);
+    auto session = weak.lock();
+    if (!session) return;
+    // as for events: the reference moves into the handler, so that the session is never
+    // destroyed on this thread
+    const auto executor = session->socket_.get_executor();
+    asio::post(executor, [session = std::move(session), generation, skipped = plan.skipped,
+                          record = std::move(record), bytes = std::move(bytes)]() mutable {
+      session->on_frame_encoded(generation, skipped, std::move(record), std::move(bytes));
+    });
+  });
+}
+
+void Session::on_frame_encoded(std::uint64_t generation, std::uint64_t skipped,
+                               FrameStream::FrameRecord record, std::string bytes) {
+  // dropped while it was encoded (a new subscription, another scene, the connection's end)
+  if (generation != frame_generation_ || closed_ || closing_) return;
+  frame_encoding_ = false;
+  frames_.encoded(std::move(record));
+  pending_frame_ = std::move(bytes);
+  frame_pending_ = true;
+  pending_frame_skipped_ = skipped;
+  write_next();
 }
 
 }  // namespace felt::net

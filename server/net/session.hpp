@@ -130,11 +130,15 @@ class Session : public std::enable_shared_from_this<Session> {
   void write_next();
   void schedule_frame();
   void on_frame_tick();
+  /// Has the server's frame encoder encode `plan`; the frame comes back to on_frame_encoded.
+  void encode_frame(FrameStream::Plan plan);
+  void on_frame_encoded(std::uint64_t generation, std::uint64_t skipped,
+                        FrameStream::FrameRecord record, std::string bytes);
   void on_scene_event(SceneId scene, const SceneEvent& event);
   void shutdown();
   /// Tells the others in the scene that this client joined or left.
   void announce(SceneEvent::Kind kind);
-  /// The frame waiting in the slot is not sent.
+  /// The frame waiting in the slot, or being encoded, is not sent.
   void drop_pending_frame();
   /// Lets go of the scene: proxies, membership, frames (the registry is the caller's).
   void forget_scene();
@@ -154,7 +158,10 @@ class Session : public std::enable_shared_from_this<Session> {
   std::string pending_frame_;  ///< latest-wins: a newer frame replaces one not yet written
   bool frame_pending_ = false;
   std::uint64_t pending_frame_skipped_ = 0;  ///< the `skipped` count the pending frame carries
-  std::string in_flight_bytes_;              ///< the bytes async_write is sending
+  bool frame_encoding_ = false;              ///< a frame is with the encoder: no other is planned
+  /// counts the frames dropped unsent: a frame encoded under an older count is not sent
+  std::uint64_t frame_generation_ = 0;
+  std::string in_flight_bytes_;  ///< the bytes async_write is sending
   bool writing_ = false;
   bool closing_ = false;  ///< a fatal error or goodbye was queued: close once it is written
   bool closed_ = false;

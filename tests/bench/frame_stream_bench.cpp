@@ -1,7 +1,7 @@
-// What a frame costs the network thread: building one from a snapshot of the 100 x 100 cloth of
-// scenes/service_bench.json and serializing it, per encoding (docs/results/service.md). Each
-// client's frame is built on the thread that also answers haptic updates, so this is time those
-// updates may wait.
+// What a frame costs: building one from a snapshot of the 100 x 100 cloth of
+// scenes/service_bench.json and serializing it, per encoding (docs/results/service.md). Every
+// client's frames are encoded on the server's one frame encoder thread (net/server_context.hpp),
+// so this times how many clients' frames one core encodes at a rate.
 
 #include <benchmark/benchmark.h>
 
@@ -26,7 +26,7 @@ void frame(benchmark::State& state, bool quantized, bool deltas, bool normals) {
   std::string out;
   for (auto _ : state) {
     v1::ServerMessage message;
-    stream.build(*snapshots[i++ % snapshots.size()], 1, 0, *message.mutable_frame());
+    stream.build(snapshots[i++ % snapshots.size()], 1, 0, *message.mutable_frame());
     out.clear();
     wire::append_message(out, message);
     stream.written();

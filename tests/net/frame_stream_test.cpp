@@ -41,7 +41,7 @@ struct Sent {
 Sent send(FrameStream& stream, const World& world, client::FrameAssembler& assembler,
           bool written = true) {
   Sent sent;
-  stream.build(*make_snapshot(world), 7, 0, sent.frame);
+  stream.build(make_snapshot(world), 7, 0, sent.frame);
   if (written) stream.written();
   auto decoded = assembler.assemble(sent.frame);
   EXPECT_TRUE(decoded) << decoded.error();
@@ -190,12 +190,12 @@ TEST(FrameStream, ADroppedFrameGivesItsTrianglesToTheNext) {
   FrameStream stream;
   stream.start({60, false, {}, false, false});
   v1::Frame dropped;
-  stream.build(*make_snapshot(world), 7, 0, dropped);
+  stream.build(make_snapshot(world), 7, 0, dropped);
   EXPECT_GT(dropped.bodies(0).triangles_size(), 0);
   stream.dropped();
   world.step();
   v1::Frame next;
-  stream.build(*make_snapshot(world), 7, 1, next);
+  stream.build(make_snapshot(world), 7, 1, next);
   EXPECT_EQ(next.bodies(0).triangles_size(), dropped.bodies(0).triangles_size());
   EXPECT_EQ(next.skipped(), 1u);
 }
@@ -205,7 +205,7 @@ TEST(FrameStream, ASubscriptionSeesOnlyItsBodies) {
   FrameStream stream;
   stream.start({60, false, {1}, false, false});
   v1::Frame frame;
-  stream.build(*make_snapshot(world), 7, 0, frame);
+  stream.build(make_snapshot(world), 7, 0, frame);
   ASSERT_EQ(frame.bodies_size(), 1);
   EXPECT_EQ(frame.bodies(0).body_id(), 1u);
   EXPECT_EQ(frame.bodies(0).name(), "c1");

@@ -1,0 +1,121 @@
+// A session's frames are encoded on the server's frame encoder thread, not on the network thread
+// that answers its haptic updates: with the encoder held up, updates are still answered, and a
+// frame still with the encoder when its subscription ends or changes is never sent.
+
+#include <future>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "felt_client.hpp"
+#include "net/server.hpp"
+#include "runtime/runner_fixtures.hpp"
+
+namespace felt::net {
+namespace {
+
+using namespace std::chrono_literals;
+
+/// A server in this process on a free loopback port, one network thread, serving a flat cloth
+/// that every client joins.
+class InProcessServer {
+ public:
+  InProcessServer() {
+    auto runner = std::make_shared<SceneRunner>(flat_cloth_scene(), SceneAccess{0, true, true});
+    runner->start();
+    context_.default_scene = scenes_.add(std::move(runner));
+    const auto endpoint = server_.listen("127.0.0.1", 0);
+    EXPECT_TRUE(endpoint) << endpoint.error();
+    if (endpoint) port_ = endpoint->port();
+    thread_ = std::thread([this] { io_.run([] {}); });
+  }
+  // as feltd ends
+  ~InProcessServer() {
+    scenes_.stop_all();
+    server_.shutdown();
+    io_.stop();
+    thread_.join();
+    context_.loader.join();
+    context_.frame_encoder.join();
+    server_.close_all();
+    io_.run_down();
+  }
+
+  std::unique_ptr<client::Client> greeted(const std::string& name) {
+    auto client = std::make_unique<client::Client>();
+    client->connect("127.0.0.1", port_);
+    client->hello(name);
+    return client;
+  }
+  ServerContext& context() { return context_; }
+
+ private:
+  SceneRegistry scenes_;
+  ServerContext context_{scenes_, SceneDirectory(FELT_SCENE_DIR), {}, "test"};
+  IoPool io_{1};
+  Server server_{io_, context_};
+  std::thread thread_;
+  std::uint16_t port_ = 0;
+};
+
+/// Keeps the frame encoder's one thread busy until destroyed: frames planned meanwhile wait.
+class EncoderHeld {
+ public:
+  explicit EncoderHeld(ServerContext& context) {
+    boost::asio::post(context.frame_encoder,
+                      [released = release_.get_future().share()] { released.wait(); });
+  }
+  ~EncoderHeld() { release_.set_value(); }
+
+ private:
+  std::promise<void> release_;
+};
+
+TEST(SessionFrames, HapticUpdatesAreAnsweredWhileTheEncoderIsBusy) {
+  InProcessServer server;
+  auto client = server.greeted("toucher");
+  {
+    EncoderHeld held(server.context());
+    client->subscribe_frames(240);  // its first frame is planned at once, and waits
+    for (int i = 0; i < 20; ++i) {
+      // above the sheet (radius 5 cm, 3 cm above: in contact), answered as usual
+      const v1::ForceUpdate force = client->proxy_update(0, {0, 0.03, 0});
+      EXPECT_GT(force.force().y(), 0);
+    }
+    EXPECT_FALSE(client->next_frame(50ms));
+  }
+  EXPECT_TRUE(client->next_frame(2s));
+}
+
+TEST(SessionFrames, AFrameStillBeingEncodedWhenItsSubscriptionEndsIsNeverSent) {
+  InProcessServer server;
+  auto client = server.greeted("watcher");
+  {
+    EncoderHeld held(server.context());
+    client->subscribe_frames(240);
+    client->unsubscribe_frames();
+  }
+  EXPECT_FALSE(client->next_frame(300ms));
+}
+
+TEST(SessionFrames, ANewSubscriptionsFirstFrameIsItsOwnKeyFrame) {
+  InProcessServer server;
+  auto client = server.greeted("watcher");
+  {
+    EncoderHeld held(server.context());
+    client->subscribe_frames(240);  // float32, planned and waiting
+    client::FrameSubscription quantized;
+    quantized.max_rate_hz = 240;
+    quantized.quantized = true;
+    client->subscribe_frames(quantized);
+  }
+  const auto frame = client->next_frame(2s);
+  ASSERT_TRUE(frame);
+  ASSERT_EQ(frame->bodies_size(), 1);
+  EXPECT_TRUE(frame->bodies(0).has_quantized_positions());
+  EXPECT_EQ(frame->bodies(0).positions_size(), 0);
+  EXPECT_GT(frame->bodies(0).triangles_size(), 0);
+}
+
+}  // namespace
+}  // namespace felt::net
