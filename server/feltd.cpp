@@ -82,9 +82,16 @@ int serve(const ServeOptions& options) {
   std::unique_ptr<felt::IdleCoreSpinners> spinners;  // outlives every session that touches it
   felt::net::ServerContext context{scenes, felt::SceneDirectory(options.scene_dir), options.limits,
                                    FELT_VERSION};
-  // named as feltd's other threads are, for top -H, perf and scripts/trace-round-trips
-  asio::post(context.loader, [] { felt::name_thread(pthread_self(), "felt-loader"); });
-  asio::post(context.frame_encoder, [] { felt::name_thread(pthread_self(), "felt-frames"); });
+  // named as feltd's other threads are (for top -H, perf and scripts/trace-round-trips), and
+  // stepping aside for the network threads as the physics threads do
+  const auto background = [nice = options.limits.background_nice](const char* name) {
+    return [nice, name] {
+      felt::name_thread(pthread_self(), name);
+      if (nice != 0) (void)felt::set_this_thread_nice(nice);  // in range: the flag is checked
+    };
+  };
+  asio::post(context.loader, background("felt-loader"));
+  asio::post(context.frame_encoder, background("felt-frames"));
   for (const std::string& file : options.scenes) {
     auto document = felt::read_scene_json(file);
     auto scene = document ? felt::load_scene(*document, scene_options(options.scene_dir))
@@ -102,7 +109,7 @@ int serve(const ServeOptions& options) {
         felt::SceneLimits{
             options.limits.max_bodies_per_scene,
             std::max<std::uint64_t>(options.limits.max_particles_per_scene, 4'000'000)});
-    runner->start();
+    runner->start(options.limits.background_nice);
     const SceneId id = scenes.add(std::move(runner));
     if (context.default_scene == 0) context.default_scene = id;
   }
@@ -202,6 +209,9 @@ int serve(const ServeOptions& options) {
     }
   };
   schedule_network_thread(true);
+  if (options.limits.background_nice != 0) {
+    std::printf("physics, loader and frame encoder: nice %d\n", options.limits.background_nice);
+  }
   std::optional<felt::CpuWakeupLatencyLimit> wakeup_limit;
   if (options.cpu_wakeup_latency_us >= 0) {
     auto held =
@@ -426,6 +436,13 @@ int main(int argc, char** argv) {
                    "haptic update preempts a busy physics thread at once (0: the kernel's)")
       ->check(CLI::Range(0, 0) | CLI::Range(static_cast<int>(felt::kMinTimeSlice.count()),
                                             static_cast<int>(felt::kMaxTimeSlice.count())))
+      ->capture_default_str();
+  serve_cmd
+      ->add_option("--background-nice", limits.background_nice,
+                   "Nice of the threads off the haptic path: every scene's physics, the loader "
+                   "and the frame encoder (0-19; no privilege), so that a haptic update's "
+                   "network thread preempts them at once (0: as the network threads)")
+      ->check(CLI::Range(0, felt::kMaxNice))
       ->capture_default_str();
   serve_cmd
       ->add_option("--cpu-wakeup-latency-us", serve_options.cpu_wakeup_latency_us,

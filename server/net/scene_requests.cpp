@@ -71,7 +71,7 @@ void start_scene(Session& session, std::uint64_t id, DocumentSource read, bool s
         std::move(*scene), SceneAccess{client, shared, keep},
         [document = std::move(*document), options] { return load_scene(document, options); },
         SceneLimits{context.options.max_bodies_per_scene, context.options.max_particles_per_scene});
-    runner->start();
+    runner->start(context.options.background_nice);
     // the loading client is in it from the start, so that it is nobody else's meanwhile
     const SceneId scene_id = context.scenes.add(runner, SceneMembers::Member{client, {}, {}});
     auto session = weak.lock();

@@ -5,6 +5,7 @@
 #include <mutex>
 #include <optional>
 
+#include "runtime/thread_latency.hpp"
 #include "runtime/thread_name.hpp"
 
 namespace felt {
@@ -81,9 +82,13 @@ SceneRunner::~SceneRunner() {
   stop();
 }
 
-void SceneRunner::start() {
+void SceneRunner::start(int physics_nice) {
   if (thread_.joinable()) return;
-  thread_ = std::jthread([this](std::stop_token stop) { run(stop); });
+  thread_ = std::jthread([this, physics_nice](std::stop_token stop) {
+    // a nice out of range leaves the thread as it was (feltd checks its flag)
+    if (physics_nice != 0) (void)set_this_thread_nice(physics_nice);
+    run(stop);
+  });
   name_thread(thread_.native_handle(), "felt-physics");
   if (servo_) servo_->start();
 }

@@ -93,9 +93,10 @@ class SceneRunner {
   SceneRunner(const SceneRunner&) = delete;
   SceneRunner& operator=(const SceneRunner&) = delete;
 
-  /// Starts the physics thread, and the servo thread if the scene has scripted devices.
-  /// Simulated time then follows the wall clock.
-  void start();
+  /// Starts the physics thread, at `physics_nice` (0 to kMaxNice: set_this_thread_nice), and
+  /// the servo thread if the scene has scripted devices. Simulated time then follows the wall
+  /// clock.
+  void start(int physics_nice = 0);
   /// Finishes the current step and joins the physics and servo threads. Requests still queued
   /// are cancelled. Safe from any thread, and more than once.
   void stop();

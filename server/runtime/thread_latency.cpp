@@ -1,6 +1,7 @@
 #include "runtime/thread_latency.hpp"
 
 #include <sched.h>
+#include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
 
@@ -61,6 +62,22 @@ std::chrono::microseconds time_slice() {
   if (!get_attr(attr)) return std::chrono::microseconds{0};
   return std::chrono::duration_cast<std::chrono::microseconds>(
       std::chrono::nanoseconds(attr.runtime_ns));
+}
+
+std::expected<void, std::string> set_this_thread_nice(int nice) {
+  if (nice < 0 || nice > kMaxNice) {
+    return std::unexpected("nice " + std::to_string(nice) + " is not in 0 to " +
+                           std::to_string(kMaxNice));
+  }
+  // on Linux PRIO_PROCESS with a thread id is that thread alone
+  if (setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), nice) != 0) {
+    return std::unexpected(std::string("setpriority: ") + std::strerror(errno));
+  }
+  return {};
+}
+
+int this_thread_nice() {
+  return getpriority(PRIO_PROCESS, static_cast<id_t>(gettid()));
 }
 
 std::expected<void, std::string> make_this_thread_realtime(int priority) {

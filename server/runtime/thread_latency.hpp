@@ -1,5 +1,6 @@
 #pragma once
-// How the threads on the haptic path ask the kernel to run them as soon as they are woken. On a
+// How the threads on the haptic path ask the kernel to run them as soon as they are woken, and
+// how a busy thread steps aside for them. On a
 // machine whose cores are busy (the physics threads, other processes) a woken thread under the
 // normal policy can wait a millisecond for a core: that is the tail of the ProxyUpdate ->
 // ForceUpdate round trip (docs/results/service.md). Two ways out:
@@ -32,6 +33,18 @@ std::expected<void, std::string> request_time_slice(
 /// The calling thread's slice as the kernel reports it: zero where it reports none (before
 /// 6.12).
 std::chrono::microseconds time_slice();
+
+/// The nicest a thread can be (setpriority(2)).
+constexpr int kMaxNice = 19;
+
+/// Sets the calling thread's nice (0 to kMaxNice) under the normal policy: a physics thread
+/// that steps aside for the threads of the haptic path (at nice 0), which then preempt it as
+/// soon as they are woken instead of waiting until it has used its share. Raising a thread's
+/// nice takes no privilege (lowering it again does); the threads it starts inherit it. Under
+/// autogroup or a cgroup, a nice weighs only against the threads of the same group.
+std::expected<void, std::string> set_this_thread_nice(int nice);
+/// The calling thread's nice.
+int this_thread_nice();
 
 /// The highest priority make_this_thread_realtime accepts (the kernel's SCHED_FIFO range).
 constexpr int kMaxRealtimePriority = 99;

@@ -2,6 +2,7 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -9,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "feltd_fixture.hpp"
-#include "support/sched_idle_threads.hpp"
+#include "support/process_threads.hpp"
 #include "wire/frame_codec.hpp"
 #include "wire/message_codec.hpp"
 
@@ -145,6 +146,46 @@ TEST_F(FeltdTest, IdleCoresSpinOnlyWhenAsked) {
   }());
   EXPECT_GT(sched_idle_threads(std::to_string(spinning.pid())).count, 0);
   EXPECT_EQ(sched_idle_threads(std::to_string(server_->pid())).count, 0);  // the default: off
+}
+
+/// The nices of `process`'s threads named `name`.
+std::vector<int> nices_of(int process, const std::string& name) {
+  std::vector<int> nices;
+  for (const ThreadStat& thread : process_threads(std::to_string(process))) {
+    if (thread.name == name) nices.push_back(thread.nice);
+  }
+  return nices;
+}
+
+TEST_F(FeltdTest, ThreadsOffTheHapticPathStepAsideForTheNetworkThreads) {
+  auto client = greeted("loader");
+  client->load_scene_by_name("default");  // a second scene, started from the loader thread
+  // feltd runs at the test's nice; a thread may raise its nice, not lower it
+  const std::vector<int> network = nices_of(server_->pid(), "felt-net-1");
+  ASSERT_EQ(network.size(), 1u);
+  const int aside = std::max(network[0], 10);
+  // a thread sets its nice as it starts
+  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  while (nices_of(server_->pid(), "felt-physics") != std::vector<int>(2, aside) &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(10ms);
+  }
+  EXPECT_EQ(nices_of(server_->pid(), "felt-physics"), std::vector<int>(2, aside));
+  EXPECT_EQ(nices_of(server_->pid(), "felt-loader"), std::vector<int>(1, aside));
+  EXPECT_EQ(nices_of(server_->pid(), "felt-frames"), std::vector<int>(1, aside));
+  for (const ThreadStat& thread : process_threads(std::to_string(server_->pid()))) {
+    if (thread.name.starts_with("felt-net") || thread.name == "feltd") {
+      EXPECT_EQ(thread.nice, network[0]) << thread.name;
+    }
+  }
+
+  FeltdProcess as_the_network([] {
+    std::vector<std::string> args = default_args();
+    args.insert(args.end(), {"--background-nice", "0"});
+    return args;
+  }());
+  EXPECT_EQ(nices_of(as_the_network.pid(), "felt-physics"), std::vector<int>(1, network[0]));
+  EXPECT_EQ(nices_of(as_the_network.pid(), "felt-frames"), std::vector<int>(1, network[0]));
 }
 
 TEST_F(FeltdTest, AClientFeelsSlidesAlongAndGrabsAMovingCloth) {

@@ -8,7 +8,7 @@
 #include <thread>
 
 #include "runtime/idle_core_spinners.hpp"
-#include "support/sched_idle_threads.hpp"
+#include "support/process_threads.hpp"
 
 namespace felt {
 namespace {

@@ -1,9 +1,10 @@
 // The haptic path's threads: the slice and priority ranges are checked, a thread gets the slice
 // it asked for, and the threads it starts (a scene's physics started from a network thread) get
-// the default slice and the normal policy back.
+// the default slice and the normal policy back; a thread's nice is its own.
 
 #include <sched.h>
 
+#include <algorithm>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -76,6 +77,37 @@ TEST(TimeSlice, AnInheritedSliceGoesToTheThreadsItStarts) {
   ASSERT_TRUE(refused.empty()) << refused;
   if (child.count() == 0) GTEST_SKIP() << "this kernel (before 6.12) reports no time slice";
   EXPECT_EQ(child.count(), 300);
+}
+
+TEST(ThreadNice, IsTheCallingThreadsAloneAndGoesToTheThreadsItStarts) {
+  const int mine = this_thread_nice();
+  const int nicer = std::min(mine + 7, kMaxNice);
+  if (nicer == mine) GTEST_SKIP() << "the test runs at the highest nice already";
+  int set = -1, child = -1;
+  std::string refused;
+  std::thread([&] {
+    const auto lowered = set_this_thread_nice(nicer);
+    if (!lowered) {
+      refused = lowered.error();
+      return;
+    }
+    set = this_thread_nice();
+    std::thread([&] { child = this_thread_nice(); }).join();
+  }).join();
+  ASSERT_TRUE(refused.empty()) << refused;
+  EXPECT_EQ(set, nicer);
+  EXPECT_EQ(child, nicer);
+  EXPECT_EQ(this_thread_nice(), mine);
+}
+
+TEST(ThreadNice, ANiceOutsideTheRangeIsRefusedWithTheRange) {
+  const int mine = this_thread_nice();
+  for (const int nice : {-1, kMaxNice + 1}) {
+    const auto set = set_this_thread_nice(nice);
+    ASSERT_FALSE(set.has_value()) << nice;
+    EXPECT_NE(set.error().find("0 to 19"), std::string::npos) << set.error();
+  }
+  EXPECT_EQ(this_thread_nice(), mine);
 }
 
 TEST(RealtimeThread, APriorityOutsideTheRangeIsRefusedWithTheRange) {
