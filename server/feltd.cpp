@@ -82,16 +82,15 @@ int serve(const ServeOptions& options) {
   std::unique_ptr<felt::IdleCoreSpinners> spinners;  // outlives every session that touches it
   felt::net::ServerContext context{scenes, felt::SceneDirectory(options.scene_dir), options.limits,
                                    FELT_VERSION};
-  // named as feltd's other threads are (for top -H, perf and scripts/trace-round-trips), and
-  // stepping aside for the network threads as the physics threads do
-  const auto background = [nice = options.limits.background_nice](const char* name) {
-    return [nice, name] {
-      felt::name_thread(pthread_self(), name);
-      if (nice != 0) (void)felt::set_this_thread_nice(nice);  // in range: the flag is checked
-    };
-  };
-  asio::post(context.loader, background("felt-loader"));
-  asio::post(context.frame_encoder, background("felt-frames"));
+  // named as feltd's other threads are (for top -H, perf and scripts/trace-round-trips); the
+  // encoder steps aside for the network threads as the physics threads do. The loader does
+  // not: a scene it starts gets its servo thread, which is on the haptic path, at the loader's
+  // nice, and a thread cannot lower its nice again without privilege.
+  asio::post(context.loader, [] { felt::name_thread(pthread_self(), "felt-loader"); });
+  asio::post(context.frame_encoder, [nice = options.limits.background_nice] {
+    felt::name_thread(pthread_self(), "felt-frames");
+    if (nice != 0) (void)felt::set_this_thread_nice(nice);  // in range: the flag is checked
+  });
   for (const std::string& file : options.scenes) {
     auto document = felt::read_scene_json(file);
     auto scene = document ? felt::load_scene(*document, scene_options(options.scene_dir))
@@ -210,7 +209,7 @@ int serve(const ServeOptions& options) {
   };
   schedule_network_thread(true);
   if (options.limits.background_nice != 0) {
-    std::printf("physics, loader and frame encoder: nice %d\n", options.limits.background_nice);
+    std::printf("physics and frame encoder: nice %d\n", options.limits.background_nice);
   }
   std::optional<felt::CpuWakeupLatencyLimit> wakeup_limit;
   if (options.cpu_wakeup_latency_us >= 0) {
@@ -439,8 +438,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   serve_cmd
       ->add_option("--background-nice", limits.background_nice,
-                   "Nice of the threads off the haptic path: every scene's physics, the loader "
-                   "and the frame encoder (0-19; no privilege), so that a haptic update's "
+                   "Nice of the busy threads off the haptic path: every scene's physics and the "
+                   "frame encoder (0-19; no privilege), so that a haptic update's "
                    "network thread preempts them at once (0: as the network threads)")
       ->check(CLI::Range(0, felt::kMaxNice))
       ->capture_default_str();

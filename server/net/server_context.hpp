@@ -32,7 +32,7 @@ struct ServerOptions {
   std::size_t max_bodies_per_scene = 256;
   std::size_t max_particles_per_scene = 250'000;  ///< in scenes clients load or build
   std::string token;                              ///< when not empty, Hello must carry it
-  /// the threads off the haptic path (every scene's physics, the loader, the frame encoder) run
+  /// the busy threads off the haptic path (every scene's physics, the frame encoder) run
   /// at this nice, so that a woken network thread preempts them at once
   /// (docs/results/background_nice.md); 0: as the network threads
   int background_nice = 10;

@@ -407,8 +407,7 @@ void Session::on_frame_tick() {
         // it carried, which the next frame must carry instead
         skipped = pending_frame_skipped_ + 1;
         frames_.dropped();
-        frame_pending_ = false;
-        pending_frame_.clear();
+        drop_pending_frame();
         ++counters_.frames_skipped;
       }
       encode_frame(frames_.plan(std::move(snapshot), scene_id_, skipped));

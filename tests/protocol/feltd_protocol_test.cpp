@@ -159,25 +159,32 @@ std::vector<int> nices_of(int process, const std::string& name) {
 
 TEST_F(FeltdTest, ThreadsOffTheHapticPathStepAsideForTheNetworkThreads) {
   auto client = greeted("loader");
-  client->load_scene_by_name("default");  // a second scene, started from the loader thread
+  // a second scene, started from the loader thread, with a scripted device on a servo thread
+  client->load_scene_by_name("finger_on_hammock");
   // feltd runs at the test's nice; a thread may raise its nice, not lower it
   const std::vector<int> network = nices_of(server_->pid(), "felt-net-1");
   ASSERT_EQ(network.size(), 1u);
   const int aside = std::max(network[0], 10);
-  // a thread sets its nice as it starts
+  // a thread sets its nice as it starts, and its starter names it after starting it
+  const auto settled = [&] {
+    return nices_of(server_->pid(), "felt-physics") == std::vector<int>(2, aside) &&
+           nices_of(server_->pid(), "felt-frames") == std::vector<int>(1, aside) &&
+           nices_of(server_->pid(), "felt-servo").size() == 1;
+  };
   const auto deadline = std::chrono::steady_clock::now() + 5s;
-  while (nices_of(server_->pid(), "felt-physics") != std::vector<int>(2, aside) &&
-         std::chrono::steady_clock::now() < deadline) {
+  while (!settled() && std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(10ms);
   }
   EXPECT_EQ(nices_of(server_->pid(), "felt-physics"), std::vector<int>(2, aside));
-  EXPECT_EQ(nices_of(server_->pid(), "felt-loader"), std::vector<int>(1, aside));
   EXPECT_EQ(nices_of(server_->pid(), "felt-frames"), std::vector<int>(1, aside));
   for (const ThreadStat& thread : process_threads(std::to_string(server_->pid()))) {
-    if (thread.name.starts_with("felt-net") || thread.name == "feltd") {
+    // the haptic path, and the loader, whose nice the scenes it starts would inherit
+    if (thread.name.starts_with("felt-net") || thread.name == "feltd" ||
+        thread.name == "felt-servo" || thread.name == "felt-loader") {
       EXPECT_EQ(thread.nice, network[0]) << thread.name;
     }
   }
+  EXPECT_EQ(nices_of(server_->pid(), "felt-servo").size(), 1u);
 
   FeltdProcess as_the_network([] {
     std::vector<std::string> args = default_args();
