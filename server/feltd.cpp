@@ -85,12 +85,17 @@ int serve(const ServeOptions& options) {
   // named as feltd's other threads are (for top -H, perf and scripts/trace-round-trips); the
   // encoder steps aside for the network threads as the physics threads do. The loader does
   // not: a scene it starts gets its servo thread, which is on the haptic path, at the loader's
-  // nice, and a thread cannot lower its nice again without privilege.
-  asio::post(context.loader, [] { felt::name_thread(pthread_self(), "felt-loader"); });
-  asio::post(context.frame_encoder, [nice = options.limits.background_nice] {
-    felt::name_thread(pthread_self(), "felt-frames");
-    if (nice != 0) (void)felt::set_this_thread_nice(nice);  // in range: the flag is checked
-  });
+  // nice, and a thread cannot lower its nice again without privilege. Waited for, so that they
+  // are set up when the server says it listens.
+  asio::post(context.loader,
+             asio::use_future([] { felt::name_thread(pthread_self(), "felt-loader"); }))
+      .get();
+  asio::post(context.frame_encoder, asio::use_future([nice = options.limits.background_nice] {
+               felt::name_thread(pthread_self(), "felt-frames");
+               // in range: the flag is checked
+               if (nice != 0) (void)felt::set_this_thread_nice(nice);
+             }))
+      .get();
   for (const std::string& file : options.scenes) {
     auto document = felt::read_scene_json(file);
     auto scene = document ? felt::load_scene(*document, scene_options(options.scene_dir))
