@@ -54,7 +54,8 @@ void SolidSystem::set_settings(const SolidStepSettings& settings) {
 }
 
 const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
-                                        std::span<const Collider> colliders) {
+                                        std::span<const Collider> colliders,
+                                        const std::function<void()>& yield_point) {
   FELT_CHECK(h > 0);
   stats_ = SolidStepStats{};
   if (bodies_.empty()) return stats_;
@@ -65,12 +66,12 @@ const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
 
   saved_.resize(bodies_.size());
   for (std::size_t b = 0; b < bodies_.size(); ++b) bodies_[b].save_step_state(saved_[b]);
-  bool ok = attempt(h, substeps, gravity, colliders);
+  bool ok = attempt(h, substeps, gravity, colliders, yield_point);
   for (int doubling = 0; !ok && doubling < kMaxSubstepDoublings; ++doubling) {
     restore();
     substeps *= 2;
     stats_.rescued = true;
-    ok = attempt(h, substeps, gravity, colliders);
+    ok = attempt(h, substeps, gravity, colliders, yield_point);
   }
   if (!ok) {
     restore();
@@ -87,7 +88,8 @@ const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
 }
 
 bool SolidSystem::attempt(Real h, int substeps, const Vec3& gravity,
-                          std::span<const Collider> colliders) {
+                          std::span<const Collider> colliders,
+                          const std::function<void()>& yield_point) {
   const Real substep_length = h / substeps;
   for (int s = 0; s < substeps; ++s) {
     timed(stats_.times.integration, [&] {
@@ -95,8 +97,10 @@ bool SolidSystem::attempt(Real h, int substeps, const Vec3& gravity,
     });
     // a non-finite node must not reach the spatial hash
     if (!healthy(false)) return false;
+    if (yield_point) yield_point();
     substep(substep_length, gravity, colliders);
     if (!healthy(true)) return false;
+    if (yield_point) yield_point();
   }
   return true;
 }

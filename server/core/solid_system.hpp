@@ -4,6 +4,7 @@
 // detection, triangle collection, penetration vectors, contact resolution.
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -61,13 +62,17 @@ class SolidSystem {
   /// Advances every solid by h in equal substeps no longer than max_step and every body's
   /// stable_time_step(). A step that leaves a non-finite node or one faster than max_speed is
   /// undone and redone with twice the substeps, up to 6 times; if none works, the bodies are
-  /// put back where they were, at rest. External forces are cleared afterwards.
-  const SolidStepStats& step(Real h, const Vec3& gravity, std::span<const Collider> colliders);
+  /// put back where they were, at rest. External forces are cleared afterwards. `yield_point`,
+  /// if given, is called after each substep's integration and after its contacts (as in
+  /// World::step).
+  const SolidStepStats& step(Real h, const Vec3& gravity, std::span<const Collider> colliders,
+                             const std::function<void()>& yield_point = {});
   const SolidStepStats& last_stats() const { return stats_; }
 
  private:
   /// Runs `substeps` substeps of length h; false as soon as the state is not healthy.
-  bool attempt(Real h, int substeps, const Vec3& gravity, std::span<const Collider> colliders);
+  bool attempt(Real h, int substeps, const Vec3& gravity, std::span<const Collider> colliders,
+               const std::function<void()>& yield_point);
   void substep(Real h, const Vec3& gravity, std::span<const Collider> colliders);
   /// Every position finite and, when `check_speed`, every velocity under max_speed.
   bool healthy(bool check_speed) const;

@@ -190,7 +190,7 @@ void World::set_step_count(std::uint64_t steps) {
   time_ = static_cast<Real>(step_count_) * settings_.time_step;
 }
 
-StepReport World::step() {
+StepReport World::step(const std::function<void()>& yield_point) {
   StepReport report;
   step_colliders_.assign(colliders_.begin(), colliders_.end());
   step_colliders_.insert(step_colliders_.end(), moving_colliders_.begin(), moving_colliders_.end());
@@ -207,13 +207,13 @@ StepReport World::step() {
     backup_.x = body.state().x;
     backup_.v = body.state().v;
     int substeps = 1;
-    bool ok = try_step(b, substeps, energy_[b]);
+    bool ok = try_step(b, substeps, energy_[b], yield_point);
     for (int retry = 0; !ok && retry < settings_.max_substep_doublings; ++retry) {
       body.state().x = backup_.x;
       body.state().v = backup_.v;
       body.integrator().reset();
       substeps *= 2;
-      ok = try_step(b, substeps, energy_[b]);
+      ok = try_step(b, substeps, energy_[b], yield_point);
     }
     if (ok && substeps > 1) report.flags |= kStepRescued;
     if (!ok) {
@@ -229,8 +229,9 @@ StepReport World::step() {
   }
   energy_valid_ = true;
   if (!solids_.bodies().empty()) {
+    if (yield_point) yield_point();
     const SolidStepStats& solid =
-        solids_.step(settings_.time_step, settings_.gravity, step_colliders_);
+        solids_.step(settings_.time_step, settings_.gravity, step_colliders_, yield_point);
     if (solid.rescued) report.flags |= kStepRescued;
     if (solid.unrecoverable) {
       // the solids step together, so all of them were rolled back
@@ -246,11 +247,13 @@ StepReport World::step() {
   return report;
 }
 
-bool World::try_step(std::size_t cloth, int substeps, Real& energy) {
+bool World::try_step(std::size_t cloth, int substeps, Real& energy,
+                     const std::function<void()>& yield_point) {
   ClothBody& body = cloths_[cloth];
   const Real h = settings_.time_step / substeps;
   for (int s = 0; s < substeps; ++s) {
     body.integrator().step(body, body.state(), time_ + s * h, h);
+    if (yield_point) yield_point();
     limit_stretch(body.model(), body.inv_mass(), body.params().stretch, h, body.state());
     resolve_collisions(step_colliders_, body.inv_mass(), body.params().thickness, body.state());
     if (body.params().self_collision) {
@@ -258,6 +261,7 @@ bool World::try_step(std::size_t cloth, int substeps, Real& energy) {
                                      body.params().thickness, body.state());
     }
     apply_constraints(body.constraints(), body.state());
+    if (yield_point) yield_point();
   }
   return healthy(body, energy);
 }

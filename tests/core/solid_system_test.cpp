@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -471,6 +472,23 @@ TEST(SolidSystem, SubstepsAreNoLongerThanMaxStep) {
   system.add_body(box_body({1, 1, 1}, Vec3::Ones(), Vec3(0, 2, 0), material));
   EXPECT_EQ(system.step(0.04, kGravity, {}).substeps, 3);
   EXPECT_EQ(system.step(3 * system.settings().max_step, kGravity, {}).substeps, 3);
+}
+
+TEST(SolidSystem, EachSubstepYieldsAfterItsIntegrationAndAfterItsContacts) {
+  SolidMaterial material = thesis_material();
+  material.model = SolidModel::kShapeMatching;
+  const auto run = [&](const std::function<void()>& yield_point) {
+    SolidSystem system;
+    system.add_body(box_body({1, 1, 1}, Vec3::Ones(), Vec3(0, 0.2, 0), material));
+    const Collider floor = floor_plane();
+    for (int n = 0; n < 20; ++n)
+      EXPECT_EQ(system.step(0.04, kGravity, {&floor, 1}, yield_point).substeps, 3);
+    return system.bodies()[0].positions();
+  };
+  int yields = 0;
+  const std::vector<Vec3> yielded = run([&yields] { ++yields; });
+  EXPECT_EQ(yields, 20 * 3 * 2);
+  EXPECT_EQ(yielded, run({}));  // and yielding changes nothing
 }
 
 TEST(SolidSystem, StepWithoutBodiesDoesNothing) {

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include "core/cloth_grid.hpp"
 #include "core/state_hash.hpp"
 #include "core/world.hpp"
@@ -135,6 +137,42 @@ TEST(World, SameInputsGiveBitIdenticalStates) {
   };
   EXPECT_EQ(run(100), run(100));
   EXPECT_NE(run(100), run(101));  // the hash does see the state
+}
+
+TEST(World, AStepYieldsBetweenItsPhasesAndYieldingChangesNothing) {
+  auto run = [](bool yielding, int& yields) {
+    World world;
+    for (Real x : {-1.0, 1.0}) {
+      GridClothSpec spec = small_grid();
+      spec.center = Vec3(x, 1, 0);
+      world.add_body(make_cloth(spec, params(), "symplectic_euler", GridPinPreset::kTopCorners));
+    }
+    const std::function<void()> count = [&yields] { ++yields; };
+    for (int n = 0; n < 200; ++n) world.step(yielding ? count : std::function<void()>{});
+    return state_hash(world);
+  };
+  int yields = 0;
+  const auto yielded = run(true, yields);
+  EXPECT_EQ(yields, 200 * 2 * 2);  // after each cloth's integration and after its constraints
+  int none = 0;
+  EXPECT_EQ(yielded, run(false, none));
+  EXPECT_EQ(none, 0);
+}
+
+TEST(World, ARescuedStepYieldsInEverySubstep) {
+  // the longest steps are the rescued ones: each of their substeps is a phase of its own
+  World world(WorldSettings{Vec3(0, -9.81, 0), 8e-3, 5, 6});
+  world.add_body(
+      make_cloth(small_grid(), params(3e4, 0.05), "symplectic_euler", GridPinPreset::kTopRow));
+  for (int n = 0; n < 100; ++n) {
+    int yields = 0;
+    const StepReport report = world.step([&yields] { ++yields; });
+    if (report.max_substeps == 1) continue;
+    // tries of 1, 2, 4 ... m substeps, each substep yielding twice
+    EXPECT_EQ(yields, 2 * (2 * report.max_substeps - 1)) << "step " << n;
+    return;
+  }
+  FAIL() << "no step needed substeps";
 }
 
 TEST(World, ClockIsStepCountTimesStep) {
