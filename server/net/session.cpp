@@ -16,6 +16,9 @@ namespace {
 constexpr int kRequestsPerTurn = 32;
 /// A proxy not updated for this long lets go of the surface it kept from its last update.
 constexpr auto kProxyIdle = std::chrono::seconds(1);
+/// The reply buffer a session keeps between writes, bytes: ForceUpdates and the usual replies
+/// fit many times over.
+constexpr std::size_t kKeptReplyCapacity = 64 * 1024;
 
 }  // namespace
 
@@ -186,15 +189,12 @@ void Session::process() {
 
 void Session::send(const v1::ServerMessage& message) {
   if (closed_ || !socket_.is_open()) return;
-  std::string bytes;
-  wire::append_message(bytes, message);
-  queued_reply_bytes_ += bytes.size();
-  replies_.push_back(std::move(bytes));
+  const bool backlog = !queued_replies_.empty();
+  wire::append_message(queued_replies_, message);
   // one reply larger than the backlog on its own (a big saved state) still goes out
-  if (queued_reply_bytes_ > context_.options.max_queued_reply_bytes && replies_.size() > 1) {
+  if (queued_replies_.size() > context_.options.max_queued_reply_bytes && backlog) {
     // the client does not read its replies; dropping them would break the protocol
-    replies_.clear();
-    queued_reply_bytes_ = 0;
+    std::string().swap(queued_replies_);
     shutdown();
     return;
   }
@@ -232,10 +232,12 @@ bool Session::refuse_hello() {
 
 void Session::write_next() {
   while (!writing_ && !closed_ && socket_.is_open()) {
-    if (!replies_.empty()) {
-      in_flight_bytes_ = std::move(replies_.front());
-      replies_.pop_front();
-      queued_reply_bytes_ -= in_flight_bytes_.size();
+    if (!queued_replies_.empty()) {
+      // every queued reply goes out in one write, and the buffer written last takes their
+      // place; one grown past what replies usually need (a burst, a frame) is let go
+      in_flight_bytes_.swap(queued_replies_);
+      queued_replies_.clear();
+      if (queued_replies_.capacity() > kKeptReplyCapacity) std::string().swap(queued_replies_);
     } else if (frame_pending_ && !closing_) {
       in_flight_bytes_.swap(pending_frame_);
       frame_pending_ = false;

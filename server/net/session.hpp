@@ -5,7 +5,6 @@
 
 #include <array>
 #include <cstdint>
-#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
@@ -117,7 +116,7 @@ class Session : public std::enable_shared_from_this<Session> {
   };
   const Counters& counters() const { return counters_; }
   std::size_t requests_in_flight() const { return in_flight_.load(); }
-  std::size_t queued_reply_bytes() const { return queued_reply_bytes_; }
+  std::size_t queued_reply_bytes() const { return queued_replies_.size(); }
 
  private:
   friend class PendingReply;
@@ -153,8 +152,9 @@ class Session : public std::enable_shared_from_this<Session> {
   Counters counters_;
   std::atomic<std::size_t> in_flight_{0};
 
-  std::deque<std::string> replies_;
-  std::size_t queued_reply_bytes_ = 0;
+  /// replies and events not yet handed to the socket, back to back as they go on the wire:
+  /// they go out in one write, and cost their bytes and no allocation each
+  std::string queued_replies_;
   std::string pending_frame_;  ///< latest-wins: a newer frame replaces one not yet written
   bool frame_pending_ = false;
   std::uint64_t pending_frame_skipped_ = 0;  ///< the `skipped` count the pending frame carries
