@@ -585,8 +585,10 @@ void SceneRunner::run(std::stop_token stop) {
         origin += std::chrono::duration_cast<Clock::duration>(Seconds((lag - h) / scale));
         lag = h;
       }
-      while (lag >= h && !stop.stop_requested() && !paused_ && step_requests_.empty()) {
+      while (lag >= h && !stop.stop_requested()) {
         if (stepped) commands_.apply_all(scene_);
+        // a pause or a StepScene just applied ends the run: its reply named this step
+        if (paused_ || !step_requests_.empty()) break;
         timed_step();
         lag -= h;
         stepped = true;

@@ -55,6 +55,25 @@ SceneBody another_cloth() {
   return SceneBody(std::move(flat_cloth_scene().world.cloths()[0]));
 }
 
+TEST(SceneRunnerRequests, NoStepFollowsAPauseReply) {
+  Fixture f;
+  // a hundred times faster than real time, the physics thread is always catching up: a pause
+  // arrives between two steps of one catch-up run
+  ASSERT_TRUE(await<SceneStatus>([&](auto done) { f.runner.set_time_scale(1, 100, done); }));
+  int moved_after_pause = 0;
+  for (int round = 0; round < 20; ++round) {
+    std::this_thread::sleep_for(5ms);
+    const auto paused = await<SceneStatus>([&](auto done) { f.runner.pause(1, done); });
+    ASSERT_TRUE(paused);
+    std::this_thread::sleep_for(5ms);
+    const auto now = await<SceneStatus>([&](auto done) { f.runner.pause(1, done); });
+    ASSERT_TRUE(now);
+    if (now->step != paused->step) ++moved_after_pause;
+    ASSERT_TRUE(await<SceneStatus>([&](auto done) { f.runner.resume(1, done); }));
+  }
+  EXPECT_EQ(moved_after_pause, 0);
+}
+
 TEST(SceneRunnerRequests, APausedSceneTakesExactlyTheStepsAskedFor) {
   Fixture f;
   const auto paused = await<SceneStatus>([&](auto done) { f.runner.pause(1, done); });
