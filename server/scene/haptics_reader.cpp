@@ -52,7 +52,7 @@ DevicePath read_path(const ObjectReader& path) {
   if (circle) {
     out.axis = path.vec3("axis", out.axis);
     if (out.axis.norm() == 0) fail(path.path_of("axis"), "must not be zero");
-    out.radius = path.positive("radius", 0.1);
+    out.radius = path.length("radius", 0.1);
   }
   out.period = path.positive("period", out.period);
   out.buttons = path.count("buttons", 0, 0, 0xffff);

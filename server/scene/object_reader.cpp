@@ -23,10 +23,9 @@ Transform read_transform(const ObjectReader& reader) {
                        {"rotate", "scale", "translate"});
   transform.rotate_degrees = t.vec3("rotate", transform.rotate_degrees);
   if (t.has("scale") && t.at("scale").is_number()) {
-    transform.scale = Vec3::Constant(t.positive("scale", 1));
+    transform.scale = Vec3::Constant(t.length("scale", 1));
   } else {
-    transform.scale = t.vec3("scale", transform.scale);
-    if ((transform.scale.array() <= 0).any()) fail(t.path_of("scale"), "must be > 0");
+    transform.scale = t.extent("scale", transform.scale);
   }
   transform.translate = t.vec3("translate", transform.translate);
   return transform;

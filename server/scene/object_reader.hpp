@@ -45,7 +45,12 @@ class ObjectReader {
 
   const std::string& path() const { return path_; }
   bool has(std::string_view key) const { return value_.contains(key); }
-  const json& at(std::string_view key) const { return value_.at(key); }
+  /// The value of `key`, which the scene must give.
+  const json& at(std::string_view key) const {
+    const auto it = value_.find(key);
+    if (it == value_.end()) fail(path_of(key), "is required");
+    return *it;
+  }
   std::string path_of(std::string_view key) const { return child(path_, key); }
 
   Real number(std::string_view key, Real fallback) const {
@@ -93,19 +98,40 @@ class ObjectReader {
     return at(key).get<std::string>();
   }
 
+  /// Three numbers within ±kMaxVectorComponent: a point, a size, a direction, a scale.
   Vec3 vec3(std::string_view key, const Vec3& fallback) const {
     if (!has(key)) return fallback;
     const json& v = at(key);
     if (!v.is_array() || v.size() != 3) fail(path_of(key), "must be an array of 3 numbers");
     Vec3 out;
     for (int i = 0; i < 3; ++i) {
-      if (!v[i].is_number() || !std::isfinite(v[i].get<Real>())) {
-        fail(element(path_of(key), i), "must be a finite number");
+      if (!v[i].is_number() || !(std::abs(v[i].get<Real>()) <= kMaxVectorComponent)) {
+        fail(element(path_of(key), i), "must be a number between -1e6 and 1e6");
       }
       out[i] = v[i].get<Real>();
     }
     return out;
   }
+  /// A length in metres, within [kMinLength, kMaxLength]: a size, a radius.
+  Real length(std::string_view key, Real fallback) const {
+    const Real x = number(key, fallback);
+    if (!(x >= kMinLength && x <= kMaxLength)) fail(path_of(key), "must be between 1e-6 and 1e6 m");
+    return x;
+  }
+  /// Three lengths (a box's size) or three scale factors, each within [kMinLength, kMaxLength].
+  Vec3 extent(std::string_view key, const Vec3& fallback) const {
+    const Vec3 v = vec3(key, fallback);
+    if ((v.array() < kMinLength).any()) fail(path_of(key), "must be at least 1e-6 in each axis");
+    return v;
+  }
+  /// Geometry below a micrometre is degenerate to the core: a lattice 1e-300 m thick had springs
+  /// whose squared lengths underflowed to 0 and failed an invariant of the server.
+  static constexpr Real kMinLength = 1e-6;
+  static constexpr Real kMaxLength = 1e6;
+  /// Far past any scene's extent (metres), velocity or acceleration; it keeps a body's particles
+  /// where doubles still tell them apart: a solid translated by 9e15 m had nodes 0.1 m apart
+  /// collapse onto each other and failed an invariant of the server.
+  static constexpr Real kMaxVectorComponent = 1e6;
 
  private:
   const json& value_;

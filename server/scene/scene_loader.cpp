@@ -29,8 +29,8 @@ GridClothSpec read_grid(const ObjectReader& reader) {
   const ObjectReader grid(reader.at("grid"), reader.path_of("grid"),
                           {"width", "height", "nx", "ny", "center", "plane", "transform"});
   GridClothSpec spec;
-  spec.width = grid.positive("width", 1);
-  spec.height = grid.positive("height", 1);
+  spec.width = grid.length("width", 1);
+  spec.height = grid.length("height", 1);
   spec.nx = grid.count("nx", 20, 2, kMaxGridSide);
   spec.ny = grid.count("ny", 20, 2, kMaxGridSide);
   spec.center = grid.vec3("center", Vec3::Zero());
@@ -210,7 +210,7 @@ void read_constraint_forces(const ObjectReader& body, ClothBody& cloth) {
     if (type == "sphere") {
       constraint.kind = ConstraintForce::Kind::kSphere;
       constraint.point = c.vec3("center", Vec3::Zero());
-      constraint.radius = c.positive("radius", 1);
+      constraint.radius = c.length("radius", 1);
     } else if (type == "plane") {
       constraint.kind = ConstraintForce::Kind::kPlane;
       constraint.point = c.vec3("point", cloth.state().x[constraint.particle]);
@@ -290,17 +290,16 @@ Collider read_collider(const json& value, const std::string& path) {
   } else if (type == "sphere") {
     c.shape = Collider::Shape::kSphere;
     c.center = reader.vec3("center", Vec3::Zero());
-    c.radius = reader.positive("radius", c.radius);
+    c.radius = reader.length("radius", c.radius);
   } else if (type == "box") {
     c.shape = Collider::Shape::kBox;
     c.center = reader.vec3("center", Vec3::Zero());
-    c.half_extents = reader.vec3("half_extents", c.half_extents);
-    if ((c.half_extents.array() <= 0).any()) fail(reader.path_of("half_extents"), "must be > 0");
+    c.half_extents = reader.extent("half_extents", c.half_extents);
   } else if (type == "capsule") {
     c.shape = Collider::Shape::kCapsule;
     c.center = reader.vec3("a", Vec3::Zero());
     c.end = reader.vec3("b", Vec3::UnitX());
-    c.radius = reader.positive("radius", c.radius);
+    c.radius = reader.length("radius", c.radius);
   } else {
     fail(reader.path_of("type"), "must be plane, sphere, box or capsule");
   }

@@ -60,8 +60,7 @@ SolidShape read_shape(const ObjectReader& body, const std::filesystem::path& ass
              "must be an integer between 1 and " + std::to_string(kMaxLatticeCells));
       }
     }
-    const Vec3 size = lattice.vec3("size", Vec3::Ones());
-    if ((size.array() <= 0).any()) fail(lattice.path_of("size"), "must be > 0");
+    const Vec3 size = lattice.extent("size", Vec3::Ones());
     LatticeGrid grid;
     grid.cells = {static_cast<int>(cells.x()), static_cast<int>(cells.y()),
                   static_cast<int>(cells.z())};
@@ -98,15 +97,15 @@ SolidShape read_shape(const ObjectReader& body, const std::filesystem::path& ass
   if (shape == "torus") {
     const ObjectReader torus(body.at("torus"), body.path_of("torus"),
                              {"major_radius", "minor_radius", "resolution"});
-    const Real major = torus.positive("major_radius", 1);
-    const Real minor = torus.positive("minor_radius", 0.3);
+    const Real major = torus.length("major_radius", 1);
+    const Real minor = torus.length("minor_radius", 0.3);
     if (minor >= major) fail(torus.path_of("minor_radius"), "must be below major_radius");
     const std::uint32_t resolution = torus.count("resolution", 12, 1, kMaxLatticeCells);
     take_lattice(torus.path_of("resolution"), resolution, particles_left);
     return embedded(make_torus_surface(major, minor, 48, 16), resolution);
   }
   const ObjectReader sphere(body.at("sphere"), body.path_of("sphere"), {"radius", "resolution"});
-  const Real radius = sphere.positive("radius", 0.5);
+  const Real radius = sphere.length("radius", 0.5);
   const std::uint32_t resolution = sphere.count("resolution", 6, 1, kMaxLatticeCells);
   take_lattice(sphere.path_of("resolution"), resolution, particles_left);
   return embedded(make_sphere_surface(radius, 3), resolution);

@@ -78,6 +78,10 @@ TEST(HapticsReader, BadValuesAreReportedWithTheirPath) {
               "shape": "samples", "samples": [ { "t": 1, "position": [0, 0, 0] },
                                                { "t": 1, "position": [0, 0, 0] } ] } } ] } })")),
             "haptics.devices[0].path.samples[1].t: must be later than the sample before");
+  // a JSON exception escaped the loader here once (the scene-JSON fuzz test found it)
+  EXPECT_EQ(error_of(json::parse(
+                R"({ "haptics": { "devices": [ { "path": { "shape": "samples" } } ] } })")),
+            "haptics.devices[0].path.samples: is required");
   EXPECT_EQ(error_of(json::parse(R"({ "haptics": { "devices": [ { "path": {
               "shape": "circle", "axis": [0, 0, 0] } } ] } })")),
             "haptics.devices[0].path.axis: must not be zero");

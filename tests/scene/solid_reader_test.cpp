@@ -104,7 +104,20 @@ TEST(SolidReader, NamesThePathOfTheBadValue) {
       {[](json& b) {
          b["lattice"]["size"] = {1, -1, 1};
        },
-       "bodies[0].lattice.size: must be > 0"},
+       "bodies[0].lattice.size: must be at least 1e-6 in each axis"},
+      // geometry the core cannot tell apart: nodes 1e-301 m apart, or 0.1 m apart at 9e15 m
+      {[](json& b) {
+         b["lattice"]["size"] = {10, 10, 1e-300};
+       },
+       "bodies[0].lattice.size: must be at least 1e-6 in each axis"},
+      {[](json& b) {
+         b["transform"] = {{"translate", {0, 0, 9.007199254740992e15}}};
+       },
+       "bodies[0].transform.translate[2]: must be a number between -1e6 and 1e6"},
+      {[](json& b) {
+         b.erase("lattice"), b["torus"] = {{"major_radius", 1e300}};
+       },
+       "bodies[0].torus.major_radius: must be between 1e-6 and 1e6 m"},
       {[](json& b) { b["node_mass"] = 0; }, "bodies[0].node_mass: must be > 0"},
       {[](json& b) { b["mass_spring"]["damping"] = -1; },
        "bodies[0].mass_spring.damping: must be >= 0"},
