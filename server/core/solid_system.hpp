@@ -61,7 +61,8 @@ class SolidSystem {
 
   /// Advances every solid by h in equal substeps no longer than max_step and every body's
   /// stable_time_step(). A step that leaves a non-finite node or one faster than max_speed is
-  /// undone and redone with twice the substeps, up to 6 times; if none works, the bodies are
+  /// undone and redone with twice the substeps, up to 6 times and within a budget of
+  /// substeps (solid_system.cpp); if none works, the bodies are
   /// put back where they were, at rest. External forces are cleared afterwards. `yield_point`,
   /// if given, is called after each substep's integration and after its contacts (as in
   /// World::step).

@@ -463,6 +463,29 @@ TEST(SolidSystem, StepThatCannotBeRescuedIsRolledBackAndStopped) {
   EXPECT_FALSE(system.step(kStep, kGravity, {&floor, 1}).unrecoverable);
 }
 
+// A step no substep can save costs a few ordinary steps, not the 127 a light body's six
+// doublings would make of hundreds of substeps: the retries stop within max(512, 4 × the first
+// attempt's) substeps.
+TEST(SolidSystem, AStepThatCannotBeRescuedStopsRetryingWithinItsBudget) {
+  const auto last_attempt = [](int first_substeps) {
+    SolidMaterial material = thesis_material();
+    material.model = SolidModel::kShapeMatching;  // max_step alone sets the substeps
+    SolidSystem system;
+    SolidStepSettings settings = system.settings();
+    settings.max_step = kStep / first_substeps;
+    system.set_settings(settings);
+    system.add_body(box_body({1, 1, 1}, Vec3::Ones(), Vec3(0, 2, 0), material));
+    system.bodies()[0].add_external_force(0,
+                                          Vec3::Constant(std::numeric_limits<Real>::quiet_NaN()));
+    const SolidStepStats& stats = system.step(kStep, kGravity, {});
+    EXPECT_TRUE(stats.unrecoverable);
+    return stats.substeps;
+  };
+  EXPECT_EQ(last_attempt(2), 2 * 64);     // 4 + 8 + ... + 128 = 252 retried substeps
+  EXPECT_EQ(last_attempt(100), 100 * 2);  // 200, and 400 more would pass 512
+  EXPECT_EQ(last_attempt(600), 600 * 2);  // 1200, and 2400 more would pass 4 × 600
+}
+
 // A shape-matching body has no step limit of its own, so max_step alone sets the substeps: a
 // 40 ms step takes three, and a step of exactly three max_steps too.
 TEST(SolidSystem, SubstepsAreNoLongerThanMaxStep) {
