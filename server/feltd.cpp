@@ -463,6 +463,12 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   serve_cmd->add_option("--token", limits.token,
                         "Shared secret every Hello must carry (default: $FELT_TOKEN)");
+  serve_cmd
+      ->add_option("--hello-timeout-ms", limits.hello_timeout_ms,
+                   "A connection that has not said Hello (with the token) by then is closed, so "
+                   "that silent connections cannot hold every --max-clients slot")
+      ->check(CLI::Range(100, 3'600'000))
+      ->capture_default_str();
   serve_cmd->add_option("--max-clients", limits.max_clients, "Connections served at once")
       ->check(CLI::Range(1, 100'000))
       ->capture_default_str();

@@ -32,6 +32,9 @@ struct ServerOptions {
   std::size_t max_bodies_per_scene = 256;
   std::size_t max_particles_per_scene = 250'000;  ///< in scenes clients load or build
   std::string token;                              ///< when not empty, Hello must carry it
+  /// a connection not greeted by then is closed: without it, connections that never say Hello
+  /// (no token, or half a frame) would hold every --max-clients slot
+  std::uint32_t hello_timeout_ms = 10'000;
   /// the busy threads off the haptic path (every scene's physics, the frame encoder) run
   /// at this nice, so that a woken network thread preempts them at once
   /// (docs/results/background_nice.md); 0: as the network threads

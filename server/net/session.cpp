@@ -78,6 +78,7 @@ Session::Session(asio::ip::tcp::socket socket, ServerContext& context)
       context_(context),
       id_(context.next_client_id.fetch_add(1)),
       decoder_(context.options.max_inbound_frame_bytes),
+      hello_timer_(socket_.get_executor()),
       frame_timer_(socket_.get_executor()) {
   // write_next writes from the handler that has something to send, and must never wait; a
   // socket that cannot be made so is closed, and the session ends at its first read
@@ -96,7 +97,23 @@ Session::~Session() {
 void Session::start() {
   counted_ = true;
   ++context_.clients;
-  asio::dispatch(socket_.get_executor(), [self = shared_from_this()] { self->read(); });
+  asio::dispatch(socket_.get_executor(), [self = shared_from_this()] {
+    self->start_hello_deadline();
+    self->read();
+  });
+}
+
+void Session::start_hello_deadline() {
+  hello_timer_.expires_after(std::chrono::milliseconds(context_.options.hello_timeout_ms));
+  // weak: the timer never keeps a session alive; the session cancels it when greeted or closed
+  hello_timer_.async_wait([weak = weak_from_this()](const boost::system::error_code& ec) {
+    const auto self = weak.lock();
+    if (ec || !self || self->greeted_ || self->closed_ || self->closing_) return;
+    self->send_error(0, v1::ERROR_CODE_HELLO_REQUIRED,
+                     "no Hello within " + std::to_string(self->context_.options.hello_timeout_ms) +
+                         " ms; the connection closes");
+    self->close_after_replies();
+  });
 }
 
 void Session::reject(v1::ErrorCode code, const std::string& message) {
@@ -129,6 +146,7 @@ void Session::close_gracefully() {
 void Session::shutdown() {
   if (closed_) return;
   closed_ = true;
+  hello_timer_.cancel();
   frame_timer_.cancel();
   boost::system::error_code ignored;
   socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
@@ -221,6 +239,7 @@ std::shared_ptr<PendingReply> Session::defer(std::uint64_t request_id) {
 void Session::set_greeted(std::string client_name) {
   const bool first = !greeted_;
   greeted_ = true;
+  hello_timer_.cancel();
   client_name_ = std::move(client_name);
   // a client is in the server's default scene from its first Hello: before it, it hears nothing
   if (first && !scene_ && context_.default_scene != 0) join(context_.default_scene);

@@ -123,6 +123,8 @@ class Session : public std::enable_shared_from_this<Session> {
   class Membership;
 
   void read();
+  /// Closes the connection if it has not said Hello in time.
+  void start_hello_deadline();
   void on_read(const boost::system::error_code& ec, std::size_t bytes);
   /// Handles buffered requests, a bounded number per turn so that other sessions get theirs.
   void process();
@@ -169,6 +171,7 @@ class Session : public std::enable_shared_from_this<Session> {
 
   bool greeted_ = false;
   int refused_hellos_ = 0;
+  boost::asio::steady_timer hello_timer_;
   std::string client_name_;
   SceneId scene_id_ = 0;
   std::shared_ptr<SceneRunner> scene_;

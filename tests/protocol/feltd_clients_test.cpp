@@ -338,6 +338,51 @@ TEST_F(FeltdTest, ATruncatedFrameThenSilenceLeavesTheServerServing) {
   EXPECT_FALSE(other->proxy_update(0, {5, 5, 5}).in_contact());
 }
 
+class ShortHelloDeadline : public FeltdTest {
+  std::vector<std::string> extra_args() const override {
+    return {"--hello-timeout-ms", "500", "--max-clients", "3"};
+  }
+};
+
+TEST_F(ShortHelloDeadline, ConnectionsThatNeverSayHelloAreClosedAndFreeTheirSlots) {
+  auto patient = greeted("patient");
+  const auto before = std::chrono::steady_clock::now();
+  Client silent;
+  connect(silent);
+  Client half;  // half a Hello, then nothing
+  connect(half);
+  v1::ClientMessage hello;
+  hello.mutable_hello()->set_protocol_version(1);
+  std::string frame;
+  wire::append_message(frame, hello);
+  half.send_raw(frame.substr(0, frame.size() - 1));
+  // meanwhile they hold every slot, and the greeted client is served
+  Client refused;
+  connect(refused);
+  const auto full = refused.receive(5s);
+  ASSERT_TRUE(full);
+  EXPECT_EQ(full->error().code(), v1::ERROR_CODE_LIMIT_EXCEEDED);
+  EXPECT_FALSE(patient->proxy_update(0, {5, 5, 5}).in_contact());
+  for (Client* unknown : {&silent, &half}) {
+    const auto error = unknown->receive(5s);
+    ASSERT_TRUE(error);
+    EXPECT_EQ(error->error().code(), v1::ERROR_CODE_HELLO_REQUIRED) << error->error().message();
+    EXPECT_EQ(error->error().request_id(), 0u);
+    EXPECT_THROW(unknown->receive(5s), ClientError);  // and closed
+  }
+  EXPECT_GE(std::chrono::steady_clock::now() - before, 500ms);
+  // the greeted client, past its own deadline, is still served, and the slots are free again
+  EXPECT_FALSE(patient->proxy_update(0, {5, 5, 5}).in_contact());
+  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  while (patient->stats().server().clients() > 1 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(10ms);
+  }
+  EXPECT_EQ(patient->stats().server().clients(), 1u);
+  auto second = greeted("second");
+  auto third = greeted("third");
+  EXPECT_EQ(third->stats().server().clients(), 3u);
+}
+
 TEST_F(FeltdTest, ShutdownTellsEveryClientFirst) {
   auto a = greeted("a");
   auto b = greeted("b");
