@@ -508,7 +508,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   serve_cmd
       ->add_option("--max-frame-rate", limits.max_frame_rate_hz,
-                   "Frames per second, per subscription")
+                   "Highest frame rate a subscription may ask for, per second (a higher one is "
+                   "refused)")
       ->check(CLI::Range(1.0, 1000.0))
       ->capture_default_str();
 

@@ -144,8 +144,8 @@ void handle_add_body(Session& session, std::uint64_t id, const v1::AddBody& add)
   if (!pending) return;
   ServerContext& context = session.context();
   std::shared_ptr<SceneRunner> scene = session.scene();
-  const auto bad = [](std::string message) -> std::expected<BuiltBody, RunnerError> {
-    return std::unexpected(RunnerError{RunnerError::Code::kBadScene, std::move(message)});
+  const auto bad = [](const SceneError& error) -> std::expected<BuiltBody, RunnerError> {
+    return std::unexpected(load_error(error));
   };
   // a body can be a big mesh to voxelize: built on the loader thread, then added in its place
   // among the client's requests
@@ -155,10 +155,10 @@ void handle_add_body(Session& session, std::uint64_t id, const v1::AddBody& add)
         const bool collider = add.has_collider_json();
         auto entry = parse_json(collider ? add.collider_json() : add.body_json(),
                                 collider ? "the collider" : "the body");
-        if (!entry) return bad(entry.error().what());
+        if (!entry) return bad(entry.error());
         if (collider) {
           auto built = load_collider(*entry, "collider");
-          if (!built) return bad(built.error().what());
+          if (!built) return bad(built.error());
           return *built;
         }
         SceneLoadOptions options;
@@ -168,7 +168,7 @@ void handle_add_body(Session& session, std::uint64_t id, const v1::AddBody& add)
         options.asset_root = context.scene_directory.root();
         auto built =
             load_body(*entry, "body", scene->bodies()->bodies.size(), scene->time_step(), options);
-        if (!built) return bad(built.error().what());
+        if (!built) return bad(built.error());
         return std::move(*built);
       },
       answer_body_added(pending));

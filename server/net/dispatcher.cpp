@@ -12,9 +12,26 @@ std::shared_ptr<PendingReply> defer_or_refuse(Session& session, std::uint64_t id
     session.send_error(id, v1::ERROR_CODE_LIMIT_EXCEEDED,
                        "at most " +
                            std::to_string(session.context().options.max_requests_in_flight) +
-                           " requests in flight per client");
+                           " requests in flight per client (--max-requests-in-flight)");
   }
   return pending;
+}
+
+void fail(PendingReply& pending, const RunnerError& error) {
+  switch (error.exceeded) {
+    case SceneLimit::kNone:
+      return pending.fail(error_code(error.code), error.message);
+    case SceneLimit::kBodies:
+      return pending.fail(error_code(error.code), error.message + " (--max-bodies)");
+    case SceneLimit::kParticles:
+      return pending.fail(error_code(error.code), error.message + " (--max-particles)");
+  }
+}
+
+RunnerError load_error(const SceneError& error) {
+  return {error.exceeded == SceneLimit::kNone ? RunnerError::Code::kBadScene
+                                              : RunnerError::Code::kLimitExceeded,
+          error.what(), error.exceeded};
 }
 
 namespace {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "net/requests.hpp"
 
@@ -17,6 +18,12 @@ void handle_subscribe(Session& session, std::uint64_t id, const v1::SubscribeFra
   if (!std::isfinite(asked) || asked < 0 || (asked > 0 && asked < limits.min_frame_rate_hz)) {
     return bad(v1::ERROR_CODE_BAD_REQUEST, "max_rate_hz must be 0 (the default) or at least " +
                                                std::to_string(limits.min_frame_rate_hz));
+  }
+  if (asked > limits.max_frame_rate_hz) {
+    std::ostringstream why;
+    why << "max_rate_hz " << asked << " is above the limit of " << limits.max_frame_rate_hz
+        << " (--max-frame-rate)";
+    return bad(v1::ERROR_CODE_LIMIT_EXCEEDED, why.str());
   }
   if (!v1::FrameEncoding_IsValid(subscribe.encoding())) {
     return bad(v1::ERROR_CODE_BAD_REQUEST, "unknown encoding");
@@ -34,7 +41,7 @@ void handle_subscribe(Session& session, std::uint64_t id, const v1::SubscribeFra
   }
   FrameOptions options;
   options.rate_hz =
-      std::min(asked == 0 ? limits.default_frame_rate_hz : asked, limits.max_frame_rate_hz);
+      asked == 0 ? std::min(limits.default_frame_rate_hz, limits.max_frame_rate_hz) : asked;
   options.normals = subscribe.normals();
   options.bodies = std::move(wanted);
   options.quantized = quantized;

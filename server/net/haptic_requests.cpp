@@ -60,7 +60,7 @@ std::expected<ProxySettings, std::string> merge(const v1::ProxySettings& setting
 
 std::string too_many_proxies(Session& session) {
   return "at most " + std::to_string(session.context().options.max_proxies_per_session) +
-         " proxies per client";
+         " proxies per client (--max-proxies)";
 }
 
 }  // namespace

@@ -82,13 +82,19 @@ std::vector<typename Repeated::value_type> sorted_unique(const Repeated& ids) {
 /// A reply deferred past the session's turn, or null after answering LIMIT_EXCEEDED.
 std::shared_ptr<PendingReply> defer_or_refuse(Session& session, std::uint64_t id);
 
+/// Answers `pending` with `error`; one over a scene limit names the flag that sets it.
+void fail(PendingReply& pending, const RunnerError& error);
+
+/// Why a scene or body did not load: over a limit (LIMIT_EXCEEDED), or a bad document.
+RunnerError load_error(const SceneError& error);
+
 /// A completion that answers `pending`: its error, or the reply `fill` writes from the value.
 template <class T>
 Completion<T> answer(std::shared_ptr<PendingReply> pending,
                      std::function<void(const T&, v1::ServerMessage&)> fill) {
   return [pending = std::move(pending), fill = std::move(fill)](std::expected<T, RunnerError> r) {
     if (!r) {
-      pending->fail(error_code(r.error().code), r.error().message);
+      fail(*pending, r.error());
       return;
     }
     v1::ServerMessage message;

@@ -19,12 +19,13 @@ using DocumentSource = std::function<std::expected<json, ReadError>()>;
 /// Why the server cannot start another scene for `client`, if it cannot.
 std::optional<std::string> no_room(const ServerContext& context, ClientId client, bool keep) {
   if (context.scenes.size() >= context.options.max_scenes) {
-    return "the server already runs " + std::to_string(context.options.max_scenes) + " scenes";
+    return "the server already runs " + std::to_string(context.options.max_scenes) +
+           " scenes (--max-scenes)";
   }
   if (keep && context.scenes.kept_by(client) >= context.options.max_kept_scenes_per_client) {
     return "this client already keeps " +
            std::to_string(context.options.max_kept_scenes_per_client) +
-           " scenes running; destroy one first";
+           " scenes running (--max-kept-scenes); destroy one first";
   }
   return std::nullopt;
 }
@@ -53,14 +54,15 @@ void start_scene(Session& session, std::uint64_t id, DocumentSource read, bool s
     }
     auto scene = load_scene(*document, options);
     if (!scene) {
-      pending->fail(v1::ERROR_CODE_BAD_SCENE, scene.error().what());
+      fail(*pending, load_error(scene.error()));
       return;
     }
     if (scene->world.body_count() > context.options.max_bodies_per_scene) {
-      pending->fail(v1::ERROR_CODE_LIMIT_EXCEEDED,
-                    "the scene has " + std::to_string(scene->world.body_count()) +
-                        " bodies; a scene may have " +
-                        std::to_string(context.options.max_bodies_per_scene));
+      fail(*pending,
+           {RunnerError::Code::kLimitExceeded,
+            "the scene has " + std::to_string(scene->world.body_count()) +
+                " bodies; a scene may have " + std::to_string(context.options.max_bodies_per_scene),
+            SceneLimit::kBodies});
       return;
     }
     if (const auto full = no_room(context, client, keep)) {  // others may have loaded since

@@ -44,7 +44,8 @@ void Server::accept() {
       if (context_.clients.load() >= context_.options.max_clients) {
         session->reject(felt::v1::ERROR_CODE_LIMIT_EXCEEDED,
                         "the server already serves " +
-                            std::to_string(context_.options.max_clients) + " clients");
+                            std::to_string(context_.options.max_clients) +
+                            " clients (--max-clients)");
       } else {
         std::lock_guard lock(sessions_mutex_);
         std::erase_if(sessions_, [](const std::weak_ptr<Session>& s) { return s.expired(); });

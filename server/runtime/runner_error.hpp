@@ -5,6 +5,8 @@
 #include <functional>
 #include <string>
 
+#include "scene/scene_error.hpp"
+
 namespace felt {
 
 struct RunnerError {
@@ -18,6 +20,7 @@ struct RunnerError {
   };
   Code code = Code::kBadRequest;
   std::string message;
+  SceneLimit exceeded = SceneLimit::kNone;  ///< with kLimitExceeded: which of the scene's limits
 };
 
 /// Called once, from the physics thread (or the thread that stopped the scene), with the

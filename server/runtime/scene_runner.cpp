@@ -322,8 +322,9 @@ void SceneRunner::restore_state(ClientId by, std::shared_ptr<const WorldState> s
 bool SceneRunner::room_for_body(Completion<BodyInfo>& done) {
   if (bodies()->bodies.size() < limits_.max_bodies) return true;
   done(std::unexpected(
-      error(RunnerError::Code::kLimitExceeded,
-            "the scene already has " + std::to_string(limits_.max_bodies) + " bodies")));
+      RunnerError{RunnerError::Code::kLimitExceeded,
+                  "the scene already has " + std::to_string(limits_.max_bodies) + " bodies",
+                  SceneLimit::kBodies}));
   return false;
 }
 
@@ -353,10 +354,11 @@ void SceneRunner::add_body(ClientId by, const Offload& build_on,
         const std::uint64_t particles =
             std::visit([](const auto& b) { return b.surface_vertex_count(); }, body);
         if (used + particles > limits_.max_particles) {
-          done(std::unexpected(error(RunnerError::Code::kLimitExceeded,
-                                     std::to_string(particles) + " particles exceed the " +
-                                         std::to_string(limits_.max_particles - used) +
-                                         " the scene's particle limit leaves")));
+          done(std::unexpected(RunnerError{RunnerError::Code::kLimitExceeded,
+                                           std::to_string(particles) + " particles exceed the " +
+                                               std::to_string(limits_.max_particles - used) +
+                                               " the scene's particle limit leaves",
+                                           SceneLimit::kParticles}));
           return;
         }
         added(by,

@@ -33,8 +33,10 @@ Transform read_transform(const ObjectReader& reader) {
 
 void take_particles(const std::string& path, std::size_t particles, std::size_t& particles_left) {
   if (particles > particles_left) {
-    fail(path, std::to_string(particles) + " particles exceed the " +
-                   std::to_string(particles_left) + " the scene's particle limit leaves");
+    throw Failure{{path,
+                   std::to_string(particles) + " particles exceed the " +
+                       std::to_string(particles_left) + " the scene's particle limit leaves",
+                   SceneLimit::kParticles}};
   }
   particles_left -= particles;
 }

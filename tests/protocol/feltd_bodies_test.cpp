@@ -123,7 +123,7 @@ TEST_F(FeltdTest, BadBodiesAreRefusedWithTheirJsonPath) {
   expect_error([&] { client->request(empty_add); }, v1::ERROR_CODE_BAD_REQUEST);
   // more particles than a client's scene may have
   expect_error([&] { client->add_body(R"({"type": "cloth", "grid": {"nx": 600, "ny": 600}})"); },
-               v1::ERROR_CODE_BAD_SCENE);
+               v1::ERROR_CODE_LIMIT_EXCEEDED, "--max-particles");
   EXPECT_EQ(client->stats().scene().bodies(), 1u);  // nothing was added
 }
 

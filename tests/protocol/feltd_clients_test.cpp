@@ -262,6 +262,7 @@ TEST_F(SmallBacklog, ClientsBodiesAndRequestsInFlightAreLimited) {
   const auto refused = fourth.receive(5s);
   ASSERT_TRUE(refused);
   EXPECT_EQ(refused->error().code(), v1::ERROR_CODE_LIMIT_EXCEEDED);
+  EXPECT_EQ(refused->error().message(), "the server already serves 3 clients (--max-clients)");
   EXPECT_THROW(fourth.receive(5s), ClientError);  // and closed
   third->close();
   std::this_thread::sleep_for(100ms);
@@ -270,7 +271,8 @@ TEST_F(SmallBacklog, ClientsBodiesAndRequestsInFlightAreLimited) {
   // the default scene has 1 body and may have 3
   first->add_body(small_cloth_json(2));
   first->add_body(small_cloth_json(3));
-  expect_error([&] { first->add_body(small_cloth_json(4)); }, v1::ERROR_CODE_LIMIT_EXCEEDED);
+  expect_error([&] { first->add_body(small_cloth_json(4)); }, v1::ERROR_CODE_LIMIT_EXCEEDED,
+               "the scene already has 3 bodies (--max-bodies)");
 
   // two long requests in flight, the third refused at once
   first->load_scene_by_name("default");
@@ -288,6 +290,8 @@ TEST_F(SmallBacklog, ClientsBodiesAndRequestsInFlightAreLimited) {
     if (reply->has_error()) {
       EXPECT_EQ(reply->request_id(), ids[2]);
       EXPECT_EQ(reply->error().code(), v1::ERROR_CODE_LIMIT_EXCEEDED);
+      EXPECT_EQ(reply->error().message(),
+                "at most 2 requests in flight per client (--max-requests-in-flight)");
       ++errors;
     } else if (reply->has_scene_status()) {
       ++statuses;

@@ -52,14 +52,15 @@ class FeltdTest : public ::testing::Test {
   std::unique_ptr<FeltdProcess> server_;
 };
 
-/// Runs `call` and expects it to throw the server's error `code`.
+/// Runs `call` and expects it to throw the server's error `code`, whose message says `says`.
 template <typename Call>
-void expect_error(Call call, v1::ErrorCode code) {
+void expect_error(Call call, v1::ErrorCode code, const std::string& says = "") {
   try {
     call();
     ADD_FAILURE() << "no error (expected code " << code << ")";
   } catch (const ClientError& e) {
     EXPECT_EQ(e.code(), code) << e.what();
+    EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
   }
 }
 

@@ -245,7 +245,9 @@ TEST_F(FeltdKeptScenesTest, OneClientKeepsAtMostTheLimitAndOthersStillLoad) {
     ADD_FAILURE() << "a third kept scene was loaded";
   } catch (const ClientError& e) {
     EXPECT_EQ(e.code(), v1::ERROR_CODE_LIMIT_EXCEEDED);
-    EXPECT_NE(std::string(e.what()).find("keeps 2 scenes"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("keeps 2 scenes running (--max-kept-scenes)"),
+              std::string::npos)
+        << e.what();
   }
   // scenes that go with their client are not limited by it, and another client keeps its own
   EXPECT_NE(client->load_scene_by_name("default").scene_id(), 0u);
