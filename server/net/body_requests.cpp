@@ -105,9 +105,10 @@ void change_solid(const v1::SetBodyParameters& set, SolidBody& body) {
   }
 }
 
-void reply_body_updated(Session& session, std::uint64_t id, BodyId body) {
-  reply(session, id,
-        [&](v1::ServerMessage& message) { message.mutable_body_updated()->set_body_id(body); });
+Completion<BodyId> answer_body_updated(std::shared_ptr<PendingReply> pending) {
+  return answer<BodyId>(std::move(pending), [](const BodyId& body, v1::ServerMessage& message) {
+    message.mutable_body_updated()->set_body_id(body);
+  });
 }
 
 Completion<BodyInfo> answer_body_added(std::shared_ptr<PendingReply> pending) {
@@ -194,11 +195,16 @@ void handle_set_body_parameters(Session& session, std::uint64_t id,
     session.send_error(id, v1::ERROR_CODE_BAD_REQUEST, why);
     return;
   }
-  session.scene()->change_body(session.client_id(), set.body_id(), [set](World& world) {
-    if (ClothBody* cloth = world.cloth(set.body_id())) change_cloth(set, *cloth);
-    if (SolidBody* solid = world.solid(set.body_id())) change_solid(set, *solid);
-  });
-  reply_body_updated(session, id, set.body_id());
+  auto pending = defer_or_refuse(session, id);
+  if (!pending) return;
+  // answered once applied: a body removed by a request queued before this one gets UNKNOWN_ID
+  session.scene()->change_body(
+      session.client_id(), set.body_id(),
+      [set](World& world) {
+        if (ClothBody* cloth = world.cloth(set.body_id())) change_cloth(set, *cloth);
+        if (SolidBody* solid = world.solid(set.body_id())) change_solid(set, *solid);
+      },
+      answer_body_updated(pending));
 }
 
 void handle_pin_particles(Session& session, std::uint64_t id, const v1::PinParticles& pins) {
@@ -218,16 +224,20 @@ void handle_pin_particles(Session& session, std::uint64_t id, const v1::PinParti
       }
     }
   }
-  session.scene()->change_body(session.client_id(), pins.body_id(), [pins](World& world) {
-    if (ClothBody* cloth = world.cloth(pins.body_id())) {
-      for (std::uint32_t p : pins.unpin()) cloth->unpin(p);
-      for (std::uint32_t p : pins.pin()) cloth->pin(p);
-    } else if (SolidBody* solid = world.solid(pins.body_id())) {
-      for (std::uint32_t n : pins.unpin()) solid->unpin(n);
-      for (std::uint32_t n : pins.pin()) solid->pin(n);
-    }
-  });
-  reply_body_updated(session, id, pins.body_id());
+  auto pending = defer_or_refuse(session, id);
+  if (!pending) return;
+  session.scene()->change_body(
+      session.client_id(), pins.body_id(),
+      [pins](World& world) {
+        if (ClothBody* cloth = world.cloth(pins.body_id())) {
+          for (std::uint32_t p : pins.unpin()) cloth->unpin(p);
+          for (std::uint32_t p : pins.pin()) cloth->pin(p);
+        } else if (SolidBody* solid = world.solid(pins.body_id())) {
+          for (std::uint32_t n : pins.unpin()) solid->unpin(n);
+          for (std::uint32_t n : pins.pin()) solid->pin(n);
+        }
+      },
+      answer_body_updated(pending));
 }
 
 void handle_apply_force(Session& session, std::uint64_t id, const v1::ApplyForce& push) {
@@ -252,11 +262,8 @@ void handle_apply_force(Session& session, std::uint64_t id, const v1::ApplyForce
   }
   auto pending = defer_or_refuse(session, id);
   if (!pending) return;
-  session.scene()->apply_force(
-      session.client_id(), push.body_id(), std::move(vertices), force, push.duration(),
-      answer<BodyId>(pending, [](const BodyId& body, v1::ServerMessage& message) {
-        message.mutable_body_updated()->set_body_id(body);
-      }));
+  session.scene()->apply_force(session.client_id(), push.body_id(), std::move(vertices), force,
+                               push.duration(), answer_body_updated(pending));
 }
 
 }  // namespace felt::net

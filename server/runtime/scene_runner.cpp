@@ -385,13 +385,21 @@ void SceneRunner::remove_body(ClientId by, BodyId body, Completion<BodyId> done)
   });
 }
 
-void SceneRunner::change_body(ClientId by, BodyId body, std::function<void(World&)> change) {
-  post([this, by, body, change = std::move(change)](Scene& scene) {
-    if (!scene.world.contains(body)) return;  // removed since the request was checked
+void SceneRunner::change_body(ClientId by, BodyId body, std::function<void(World&)> change,
+                              Completion<BodyId> done) {
+  request<BodyId>(std::move(done), [this, by, body, change = std::move(change)](
+                                       Scene& scene, Completion<BodyId>& done) {
+    // removed by a request queued before this one, after this one was checked
+    if (!scene.world.contains(body)) {
+      done(std::unexpected(
+          error(RunnerError::Code::kUnknownId, "no body " + std::to_string(body) + " any more")));
+      return;
+    }
     change(scene.world);
     SceneEvent e = event(SceneEvent::Kind::kBodyChanged, by);
     e.body_ids = {body};
     members_.broadcast(std::move(e));
+    done(body);
   });
 }
 

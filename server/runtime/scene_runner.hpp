@@ -146,9 +146,10 @@ class SceneRunner {
                 std::function<std::expected<BuiltBody, RunnerError>()> build,
                 Completion<BodyInfo> done);
   void remove_body(ClientId by, BodyId body, Completion<BodyId> done);
-  /// Runs `change` on a live body's world between steps (nothing if the body is gone by then)
-  /// and tells the other clients.
-  void change_body(ClientId by, BodyId body, std::function<void(World&)> change);
+  /// Runs `change` on a live body's world between steps and tells the other clients; answers
+  /// kUnknownId instead if the body is gone by then.
+  void change_body(ClientId by, BodyId body, std::function<void(World&)> change,
+                   Completion<BodyId> done);
   /// `force` on each of `vertices` for `duration` simulated seconds (0: the next step); at most
   /// kMaxTimedForces at once in a scene (a paused scene's never expire).
   void apply_force(ClientId by, BodyId body, std::vector<std::uint32_t> vertices, const Vec3& force,

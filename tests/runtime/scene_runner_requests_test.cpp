@@ -114,7 +114,10 @@ TEST(SceneRunnerRequests, APausedScenePublishesOnlyVisibleChanges) {
   ASSERT_TRUE(await<SceneStatus>([&](auto done) { f.runner.set_time_scale(1, 0.5, done); }));
   ASSERT_TRUE(
       await<BodyId>([&](auto done) { f.runner.apply_force(1, 0, {0}, Vec3(0, 1, 0), 1.0, done); }));
-  f.runner.change_body(1, 0, [](World& world) { world.cloth(0)->pin(5); });
+  ASSERT_TRUE(await<BodyId>([&](auto done) {
+    f.runner.change_body(
+        1, 0, [](World& world) { world.cloth(0)->pin(5); }, done);
+  }));
   ASSERT_TRUE(later_turn());
   ASSERT_TRUE(later_turn());
   EXPECT_EQ(f.runner.latest()->version, version);
@@ -207,6 +210,34 @@ TEST(SceneRunnerRequests, BodiesComeAndGoWithEventsAndFreshIds) {
   EXPECT_EQ(events[1].kind, Kind::kBodyRemoved);
   EXPECT_EQ(events[1].body_ids, std::vector<BodyId>{0});
   EXPECT_EQ(events[1].client, 1u);
+}
+
+// A change checked against a body that a request queued before it removes: answered as such,
+// not applied, not announced.
+TEST(SceneRunnerRequests, AChangeToABodyRemovedFirstIsAnUnknownId) {
+  Fixture f;
+  Awaited<BodyId> removed, changed;
+  bool ran = false;
+  f.runner.remove_body(1, 0, removed.completion());
+  f.runner.change_body(
+      1, 0, [&](World&) { ran = true; }, changed.completion());
+  ASSERT_TRUE(removed.get());
+  const auto answer = changed.get();
+  ASSERT_FALSE(answer);
+  EXPECT_EQ(answer.error().code, RunnerError::Code::kUnknownId);
+  EXPECT_FALSE(ran);
+  EXPECT_EQ(f.kinds(), std::vector<Kind>{Kind::kBodyRemoved});
+  // a live body's change is applied, then answered and announced
+  const auto added = await<BodyInfo>([&](auto done) { add(f.runner, 1, another_cloth(), done); });
+  ASSERT_TRUE(added);
+  const auto applied = await<BodyId>([&](auto done) {
+    f.runner.change_body(
+        1, added->body_id, [&](World&) { ran = true; }, done);
+  });
+  ASSERT_TRUE(applied);
+  EXPECT_EQ(*applied, added->body_id);
+  EXPECT_TRUE(ran);
+  EXPECT_EQ(f.kinds().back(), Kind::kBodyChanged);
 }
 
 TEST(SceneRunnerRequests, TheBodyAndParticleLimitsHold) {
