@@ -14,6 +14,10 @@ bool has(const google::protobuf::RepeatedPtrField<std::string>& names, const std
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
+std::vector<std::uint32_t> body_ids(const v1::SceneEvent& event) {
+  return {event.body_ids().begin(), event.body_ids().end()};
+}
+
 TEST_F(FeltdTest, ScenesListTheirFilesAndTheRunningScenes) {
   auto client = greeted("lister");
   const v1::SceneList list = client->list_scenes();
@@ -117,6 +121,61 @@ TEST_F(FeltdTest, InASharedSceneAnyoneChangesAnythingAndTheOthersHear) {
   EXPECT_EQ(event->bodies(0).particles(), 36u);
   first->pause();
   EXPECT_TRUE(second->wait_event(v1::EVENT_KIND_SCENE_PAUSED, 5s));
+}
+
+// What one client does, the others in the scene hear with its details, while the client
+// itself gets its reply instead.
+TEST_F(FeltdTest, TheOthersHearOfChangesControlAndRestoresWithTheirDetails) {
+  Client actor;
+  connect(actor);
+  const std::uint32_t actor_id = actor.hello("actor").client_id();
+  const v1::SceneLoaded scene = actor.load_scene_by_name("default", true);
+  auto observer = greeted("observer");
+  observer->join_scene(scene.scene_id());
+  actor.pause();
+  ASSERT_TRUE(observer->wait_event(v1::EVENT_KIND_SCENE_PAUSED, 5s));
+  std::uint64_t sequence = 0;
+  const auto heard = [&](v1::EventKind kind) {
+    const auto event = observer->wait_event(kind, 5s);
+    EXPECT_TRUE(event) << kind;
+    if (!event) return v1::SceneEvent();
+    EXPECT_EQ(event->scene_id(), scene.scene_id());
+    EXPECT_EQ(event->client_id(), actor_id);
+    EXPECT_EQ(event->client_name(), "actor");
+    EXPECT_GT(event->sequence(), sequence);
+    sequence = event->sequence();
+    return *event;
+  };
+
+  v1::SetBodyParameters set;
+  set.set_body_id(0);
+  set.set_drag(0.01);
+  EXPECT_EQ(actor.set_body_parameters(set).body_id(), 0u);
+  EXPECT_EQ(body_ids(heard(v1::EVENT_KIND_BODY_CHANGED)), std::vector<std::uint32_t>{0});
+  EXPECT_EQ(actor.pin_particles(0, {399}, {}).body_id(), 0u);
+  EXPECT_EQ(body_ids(heard(v1::EVENT_KIND_BODY_CHANGED)), std::vector<std::uint32_t>{0});
+
+  const v1::StateSaved saved = actor.save_state();
+  EXPECT_EQ(actor.step(50).step(), saved.step() + 50);
+  EXPECT_EQ(actor.restore_state(saved.state_id()).step(), saved.step());
+  const v1::SceneEvent restored = heard(v1::EVENT_KIND_STATE_RESTORED);
+  EXPECT_EQ(restored.step(), saved.step());
+  EXPECT_DOUBLE_EQ(restored.sim_time(), saved.sim_time());
+
+  EXPECT_DOUBLE_EQ(actor.set_time_scale(2.5).time_scale(), 2.5);
+  EXPECT_DOUBLE_EQ(heard(v1::EVENT_KIND_TIME_SCALE).time_scale(), 2.5);
+
+  const v1::SceneStatus resumed = actor.resume();
+  EXPECT_FALSE(resumed.paused());
+  const v1::SceneEvent running = heard(v1::EVENT_KIND_SCENE_RESUMED);
+  EXPECT_EQ(running.step(), resumed.step());
+  EXPECT_DOUBLE_EQ(running.time_scale(), 2.5);
+
+  // an event is posted to a session before the reply of the request that raised it: had the
+  // actor been sent its own, it would be here by now
+  for (const v1::SceneEvent& event : actor.take_events()) {
+    EXPECT_NE(event.client_id(), actor_id) << event.ShortDebugString();
+  }
 }
 
 TEST_F(FeltdTest, APausedSceneStepsOnRequestAndScalesItsTime) {
