@@ -332,6 +332,7 @@ TEST_F(FeltdTest, SubscriptionsChooseBodiesAndEndOnUnsubscribe) {
   ASSERT_TRUE(frame);
   ASSERT_EQ(frame->bodies_size(), 1);
   EXPECT_EQ(frame->bodies(0).name(), "flag");
+  EXPECT_EQ(client->ack_frame(frame->sequence()).sequence(), frame->sequence());
   only_flag.body_ids = {42};
   expect_error([&] { client->subscribe_frames(only_flag); }, v1::ERROR_CODE_UNKNOWN_ID);
   v1::ClientMessage bad;

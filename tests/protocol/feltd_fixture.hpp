@@ -68,6 +68,17 @@ inline std::array<double, 3> vertex(const v1::BodyFrame& body, int v) {
   return {body.positions(3 * v), body.positions(3 * v + 1), body.positions(3 * v + 2)};
 }
 
+/// Sends `requests` StepScene requests of `steps` steps each without waiting; their ids.
+inline std::vector<std::uint64_t> send_steps(Client& client, int requests, std::uint32_t steps) {
+  std::vector<std::uint64_t> ids;
+  for (int i = 0; i < requests; ++i) {
+    v1::ClientMessage step;
+    step.mutable_step_scene()->set_steps(steps);
+    ids.push_back(client.send(step));
+  }
+  return ids;
+}
+
 /// A small hanging cloth as AddBody takes it.
 inline std::string small_cloth_json(double x = 2.0) {
   return R"({"type": "cloth", "name": "flag", "grid": {"nx": 6, "ny": 6, "width": 0.5,

@@ -15,8 +15,9 @@ extern char** environ;
 
 namespace felt::test {
 
-FeltdProcess::FeltdProcess(const std::vector<std::string>& args) {
-  std::vector<std::string> argv_storage = {FELTD_PATH, "serve", "--listen", "127.0.0.1:0"};
+FeltdProcess::FeltdProcess(const std::vector<std::string>& args, bool default_listen) {
+  std::vector<std::string> argv_storage = {FELTD_PATH, "serve"};
+  if (!default_listen) argv_storage.insert(argv_storage.end(), {"--listen", "127.0.0.1:0"});
   argv_storage.insert(argv_storage.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (std::string& arg : argv_storage) argv.push_back(arg.data());

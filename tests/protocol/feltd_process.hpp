@@ -13,9 +13,10 @@ namespace felt::test {
 
 class FeltdProcess {
  public:
-  /// Starts `feltd serve --listen 127.0.0.1:0 ARGS...` and reads the port from its first line.
+  /// Starts `feltd serve --listen 127.0.0.1:0 ARGS...` (without --listen, feltd's default, when
+  /// `default_listen`) and reads the port from its first line, which must say 127.0.0.1.
   /// Throws std::runtime_error when it does not come up.
-  explicit FeltdProcess(const std::vector<std::string>& args);
+  explicit FeltdProcess(const std::vector<std::string>& args, bool default_listen = false);
   ~FeltdProcess();
   FeltdProcess(const FeltdProcess&) = delete;
   FeltdProcess& operator=(const FeltdProcess&) = delete;

@@ -1,10 +1,17 @@
 // End to end: the real feltd on port 0, driven through felt_client over loopback.
 
+#include <arpa/inet.h>
+#include <ifaddrs.h>
+#include <net/if.h>
+#include <netinet/in.h>
 #include <signal.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -107,6 +114,26 @@ TEST_F(FeltdTest, ProxyPushedIntoTheClothIsPushedBackOut) {
   EXPECT_EQ(free.force().x(), 0);
   EXPECT_EQ(free.force().y(), 0);
   EXPECT_EQ(free.force().z(), 0);
+}
+
+TEST_F(FeltdTest, AForceUpdateEchoesTheClientsTimeAndStampsTheServers) {
+  auto device = greeted("device");
+  v1::ClientMessage message;
+  v1::ProxyUpdate& update = *message.mutable_proxy_update();
+  update.set_proxy_id(3);
+  update.mutable_position()->set_y(1.2);
+  update.mutable_position()->set_z(0.01);
+  update.set_client_time_us(0xfedcba9876543210ull);  // every one of the 64 bits
+  const v1::ForceUpdate first = device->request(message).force_update();
+  EXPECT_EQ(first.proxy_id(), 3u);
+  EXPECT_EQ(first.client_time_us(), 0xfedcba9876543210ull);
+  EXPECT_GT(first.server_receive_ns(), 0u);
+  EXPECT_LE(first.server_receive_ns(), first.server_send_ns());
+  update.set_client_time_us(1);
+  const v1::ForceUpdate second = device->request(message).force_update();
+  EXPECT_EQ(second.client_time_us(), 1u);
+  EXPECT_GT(second.server_receive_ns(), first.server_send_ns());  // one steady clock
+  EXPECT_LE(second.server_receive_ns(), second.server_send_ns());
 }
 
 class FeltdSpinningTest : public FeltdTest {
@@ -466,6 +493,83 @@ TEST(Feltd, TokenIsRequiredWhenConfigured) {
     EXPECT_THROW(guesser.hello("guesser", "sesame"), ClientError);  // closed
   }
   EXPECT_EQ(server.stop(SIGINT, 5s), 0);
+}
+
+/// Sets an environment variable while it lives (feltd children inherit the environment).
+class ScopedEnvironment {
+ public:
+  ScopedEnvironment(const char* name, const char* value) : name_(name) { setenv(name, value, 1); }
+  ~ScopedEnvironment() { unsetenv(name_); }
+  ScopedEnvironment(const ScopedEnvironment&) = delete;
+  ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
+
+ private:
+  const char* name_;
+};
+
+TEST(Feltd, TheTokenCanComeFromTheEnvironmentAndTheFlagWins) {
+  const auto token_needed = [](FeltdProcess& server, const std::string& token) {
+    Client client;
+    client.connect("127.0.0.1", server.port());
+    expect_error([&] { client.hello("intruder"); }, v1::ERROR_CODE_UNAUTHORIZED);
+    EXPECT_EQ(client.hello("friend", token).protocol_version(), 1u);
+  };
+  ScopedEnvironment environment("FELT_TOKEN", "from-the-environment");
+  FeltdProcess from_environment(default_args());
+  token_needed(from_environment, "from-the-environment");
+  auto args = default_args();
+  args.insert(args.end(), {"--token", "from-the-flag"});
+  FeltdProcess from_flag(args);
+  {
+    Client client;
+    client.connect("127.0.0.1", from_flag.port());
+    expect_error([&] { client.hello("guesser", "from-the-environment"); },
+                 v1::ERROR_CODE_UNAUTHORIZED);
+  }
+  token_needed(from_flag, "from-the-flag");
+}
+
+/// Whether a TCP connection to `address`:`port` (IPv4, network order) is accepted.
+bool accepts(in_addr address, std::uint16_t port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(port);
+  to.sin_addr = address;
+  const bool connected = ::connect(fd, reinterpret_cast<sockaddr*>(&to), sizeof to) == 0;
+  ::close(fd);
+  return connected;
+}
+
+TEST(Feltd, ListensOnLoopbackOnlyByDefault) {
+  constexpr std::uint16_t kDefaultPort = 7450;
+  std::optional<FeltdProcess> server;
+  try {
+    server.emplace(default_args(), true);
+  } catch (const std::runtime_error& e) {
+    // a server that did not come up because another holds the port says nothing of the default
+    in_addr loopback{htonl(INADDR_LOOPBACK)};
+    if (std::string(e.what()).starts_with("feltd exited") && accepts(loopback, kDefaultPort)) {
+      GTEST_SKIP() << "port 7450 is in use";
+    }
+    FAIL() << e.what();  // listening elsewhere than on 127.0.0.1 is one of these
+  }
+  EXPECT_EQ(server->first_line(), "listening on 127.0.0.1:7450");
+  Client local;
+  local.connect("127.0.0.1", kDefaultPort);
+  EXPECT_EQ(local.hello("local").protocol_version(), 1u);
+  // the machine's other IPv4 addresses (a container has its own) do not reach it
+  ifaddrs* interfaces = nullptr;
+  ASSERT_EQ(getifaddrs(&interfaces), 0);
+  for (const ifaddrs* i = interfaces; i; i = i->ifa_next) {
+    if (!i->ifa_addr || i->ifa_addr->sa_family != AF_INET || (i->ifa_flags & IFF_LOOPBACK) ||
+        !(i->ifa_flags & IFF_UP)) {
+      continue;
+    }
+    const in_addr address = reinterpret_cast<const sockaddr_in*>(i->ifa_addr)->sin_addr;
+    EXPECT_FALSE(accepts(address, kDefaultPort)) << inet_ntoa(address);
+  }
+  freeifaddrs(interfaces);
 }
 
 }  // namespace
