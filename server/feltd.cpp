@@ -110,9 +110,8 @@ int serve(const ServeOptions& options) {
         [document = std::move(*document), load_options = scene_options(options.scene_dir)] {
           return felt::load_scene(document, load_options);
         },
-        felt::SceneLimits{
-            options.limits.max_bodies_per_scene,
-            std::max<std::uint64_t>(options.limits.max_particles_per_scene, 4'000'000)});
+        felt::SceneLimits{options.limits.max_bodies_per_scene,
+                          options.limits.max_particles_per_scene});
     runner->start(options.limits.background_nice);
     const SceneId id = scenes.add(std::move(runner));
     if (context.default_scene == 0) context.default_scene = id;
