@@ -485,7 +485,9 @@ int main(int argc, char** argv) {
   serve_cmd
       ->add_option("--max-particles", limits.max_particles_per_scene,
                    "Particles per scene a client loads or builds")
-      ->check(CLI::Range(1, 100'000'000))
+      // as many as the server's own scene files may have; a frame of them stays within the
+      // 256 MiB a client's decoder takes
+      ->check(CLI::Range(1, 4'000'000))
       ->capture_default_str();
   serve_cmd->add_option("--max-proxies", limits.max_proxies_per_session, "Open proxies per client")
       ->check(CLI::Range(1, 10'000))
