@@ -222,7 +222,15 @@ TEST_F(FeltdTest, ThreadsOffTheHapticPathStepAsideForTheNetworkThreads) {
   EXPECT_EQ(nices_of(as_the_network.pid(), "felt-frames"), std::vector<int>(1, network[0]));
 }
 
-TEST_F(FeltdTest, AClientFeelsSlidesAlongAndGrabsAMovingCloth) {
+/// A server whose physics keeps up with the wall clock beside the other tests: at the default
+/// nice 10, two test processes busy beside it left the cloth behind the finger's 1 kHz path (no
+/// contact at the end of the press, or a finger held in a dent the cloth had not moved on from).
+class FeltdLiveClothTest : public FeltdTest {
+ protected:
+  std::vector<std::string> extra_args() const override { return {"--background-nice", "0"}; }
+};
+
+TEST_F(FeltdLiveClothTest, AClientFeelsSlidesAlongAndGrabsAMovingCloth) {
   Client client;
   connect(client);
   client.hello("test");
