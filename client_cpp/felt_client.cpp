@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <google/protobuf/descriptor.h>
+
 #include "wire/message_codec.hpp"
 
 namespace felt::client {
@@ -125,10 +127,31 @@ v1::ServerMessage Client::request(v1::ClientMessage& message) {
     auto reply = receive(std::max(left, std::chrono::milliseconds(0)));
     if (!reply) throw ClientError(v1::ERROR_CODE_UNSPECIFIED, "no reply within the timeout");
     if (keep_streamed(*reply)) continue;
+    // the server's last word: it closes the connection, so the reply will never come
+    if (reply->has_error() && reply->request_id() == 0) throw ClientError(reply->error());
     if (reply->request_id() != id) continue;  // a late reply to an earlier, timed-out request
-    if (reply->has_error()) throw ClientError(reply->error().code(), reply->error().message());
+    if (reply->has_error()) throw ClientError(reply->error());
     return std::move(*reply);
   }
+}
+
+v1::ServerMessage Client::request(v1::ClientMessage& message,
+                                  v1::ServerMessage::BodyCase expected) {
+  v1::ServerMessage reply = request(message);
+  check_reply(reply, expected);
+  return reply;
+}
+
+void check_reply(const v1::ServerMessage& reply, v1::ServerMessage::BodyCase expected) {
+  if (reply.body_case() == expected) return;
+  // the oneof's cases are its field numbers
+  const auto name = [](v1::ServerMessage::BodyCase kind) {
+    const auto* field = v1::ServerMessage::descriptor()->FindFieldByNumber(kind);
+    return field ? field->name() : std::string("an empty message");
+  };
+  throw ClientError(
+      v1::ERROR_CODE_UNSPECIFIED,
+      "the server answered with " + name(reply.body_case()) + " instead of " + name(expected));
 }
 
 bool Client::keep_streamed(v1::ServerMessage& message) {

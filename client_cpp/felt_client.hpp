@@ -23,6 +23,7 @@ class ClientError : public std::runtime_error {
  public:
   ClientError(felt::v1::ErrorCode code, const std::string& message)
       : std::runtime_error(message), code_(code) {}
+  explicit ClientError(const felt::v1::Error& error) : ClientError(error.code(), error.message()) {}
   felt::v1::ErrorCode code() const { return code_; }
 
  private:
@@ -104,8 +105,12 @@ class Client {
                                                  std::chrono::milliseconds timeout);
 
   /// Sends `message` with a fresh request id and returns the reply with that id. An Error
-  /// reply throws ClientError.
+  /// reply, or the server's Error before it closes the connection (request id 0), throws
+  /// ClientError.
   felt::v1::ServerMessage request(felt::v1::ClientMessage& message);
+  /// The same, and throws ClientError unless the reply is of the kind `expected`.
+  felt::v1::ServerMessage request(felt::v1::ClientMessage& message,
+                                  felt::v1::ServerMessage::BodyCase expected);
   /// Sends `message` with a fresh request id and returns the id, without waiting.
   std::uint64_t send(felt::v1::ClientMessage& message);
 
@@ -132,6 +137,10 @@ class Client {
   std::uint64_t next_request_id_ = 1;
   std::chrono::milliseconds reply_timeout_ = std::chrono::seconds(10);
 };
+
+/// Throws ClientError unless `reply` is of the kind `expected`: reading the expected field of
+/// another kind of reply would silently give an empty message.
+void check_reply(const felt::v1::ServerMessage& reply, felt::v1::ServerMessage::BodyCase expected);
 
 /// Microseconds of the client's steady clock: what ProxyUpdate.client_time_us carries.
 std::uint64_t steady_microseconds();

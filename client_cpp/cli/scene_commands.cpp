@@ -111,7 +111,7 @@ int load(const Common& common, const LoadOptions& options) {
   load.set_shared(options.shared);
   // the scene outlives this command: others join it with --join
   load.set_keep(true);
-  print_bodies(client.request(message).scene_loaded());
+  print_bodies(client.request(message, v1::ServerMessage::kSceneLoaded).scene_loaded());
   return 0;
 }
 
