@@ -19,7 +19,9 @@ constexpr std::size_t kMaxInboundFrameBytes = 256u << 20;
 
 }  // namespace
 
-AsyncClient::AsyncClient() : socket_(io_), decoder_(kMaxInboundFrameBytes) {}
+AsyncClient::AsyncClient() : socket_(io_), decoder_(kMaxInboundFrameBytes) {
+  ended_.set_message("not connected");
+}
 
 AsyncClient::~AsyncClient() {
   close();
@@ -49,17 +51,20 @@ v1::Welcome AsyncClient::connect(const std::string& host, std::uint16_t port,
   hello->set_protocol_version(1);
   hello->set_client_name(client_name);
   hello->set_token(token);
-  return request(std::move(message), timeout).welcome();
+  const v1::ServerMessage reply = request(std::move(message), timeout);
+  check_reply(reply, v1::ServerMessage::kWelcome);
+  return reply.welcome();
 }
 
 void AsyncClient::close() {
   if (thread_.joinable()) {
     asio::post(io_, [this] {
+      closing_ = true;
       std::lock_guard lock(write_mutex_);
       open_ = false;
       boost::system::error_code ignored;
       socket_.shutdown(tcp::socket::shutdown_both, ignored);
-      socket_.close(ignored);
+      socket_.close(ignored);  // the pending read ends, and with it the connection
     });
     thread_.join();
   }
@@ -70,7 +75,16 @@ std::uint64_t AsyncClient::send(v1::ClientMessage message, ReplyHandler on_reply
   const std::uint64_t id = next_request_id_++;
   message.set_request_id(id);
   if (on_reply) {
-    std::lock_guard lock(handlers_mutex_);
+    std::unique_lock lock(handlers_mutex_);
+    if (!connected_) {
+      v1::ServerMessage reply;
+      reply.set_request_id(id);
+      *reply.mutable_error() = ended_;
+      reply.mutable_error()->set_request_id(id);
+      lock.unlock();
+      on_reply(reply);
+      return id;
+    }
     handlers_.emplace(id, std::move(on_reply));
   }
   std::string bytes;
@@ -88,8 +102,7 @@ void AsyncClient::write(std::string bytes) {
         ::send(socket_.native_handle(), bytes.data(), bytes.size(), MSG_DONTWAIT | MSG_NOSIGNAL);
     if (sent == static_cast<ssize_t>(bytes.size())) return;
     if (sent < 0 && errno != EAGAIN && errno != EWOULDBLOCK) {
-      open_ = false;
-      connected_ = false;
+      open_ = false;  // the pending read fails too and ends the connection
       return;
     }
     bytes.erase(0, sent < 0 ? 0 : static_cast<std::size_t>(sent));
@@ -125,7 +138,7 @@ v1::ServerMessage AsyncClient::request(v1::ClientMessage message,
     throw ClientError(v1::ERROR_CODE_UNSPECIFIED, "no reply within the timeout");
   }
   v1::ServerMessage result = reply.get();
-  if (result.has_error()) throw ClientError(result.error().code(), result.error().message());
+  if (result.has_error()) throw ClientError(result.error());
   return result;
 }
 
@@ -141,7 +154,6 @@ void AsyncClient::write_next() {
                         if (ec) {
                           open_ = false;  // what is queued can never go out
                           outbox_.clear();
-                          connected_ = false;
                           return;
                         }
                       }
@@ -150,26 +162,33 @@ void AsyncClient::write_next() {
 }
 
 void AsyncClient::read() {
-  socket_.async_read_some(asio::buffer(buffer_),
-                          [this](const boost::system::error_code& ec, std::size_t n) {
-                            if (ec) {
-                              connected_ = false;
-                              return;
-                            }
-                            decoder_.feed(std::span<const std::uint8_t>(buffer_.data(), n));
-                            while (true) {
-                              const wire::DecodeResult frame = decoder_.next();
-                              if (frame.status == wire::DecodeStatus::kNeedMore) break;
-                              v1::ServerMessage message;
-                              if (frame.status != wire::DecodeStatus::kFrame ||
-                                  !wire::parse_message(frame.payload, message)) {
-                                connected_ = false;
-                                return;
-                              }
-                              deliver(message);
-                            }
-                            read();
-                          });
+  socket_.async_read_some(
+      asio::buffer(buffer_), [this](const boost::system::error_code& ec, std::size_t n) {
+        if (ec) {
+          v1::Error why;
+          why.set_message(closing_                 ? "the connection was closed"
+                          : ec == asio::error::eof ? "the server closed the connection"
+                                                   : "the connection failed: " + ec.message());
+          end(why);
+          return;
+        }
+        decoder_.feed(std::span<const std::uint8_t>(buffer_.data(), n));
+        while (true) {
+          const wire::DecodeResult frame = decoder_.next();
+          if (frame.status == wire::DecodeStatus::kNeedMore) break;
+          v1::ServerMessage message;
+          if (frame.status != wire::DecodeStatus::kFrame ||
+              !wire::parse_message(frame.payload, message)) {
+            v1::Error why;
+            why.set_code(v1::ERROR_CODE_MALFORMED_FRAME);
+            why.set_message("the server sent a malformed message");
+            end(why);
+            return;
+          }
+          deliver(message);
+        }
+        read();
+      });
 }
 
 void AsyncClient::deliver(v1::ServerMessage& message) {
@@ -192,9 +211,39 @@ void AsyncClient::deliver(v1::ServerMessage& message) {
   }
   if (handler) {
     handler(message);
-  } else if (message.has_force_update() && on_force_) {
-    on_force_(message.force_update(), steady_microseconds());
+  } else if (message.has_force_update()) {
+    if (on_force_) on_force_(message.force_update(), steady_microseconds());
+  } else if (message.has_error()) {
+    if (message.request_id() == 0) last_word_ = message.error();
+    if (on_error_) on_error_(message.error());
   }
+}
+
+void AsyncClient::end(const v1::Error& why) {
+  {
+    std::lock_guard lock(write_mutex_);
+    open_ = false;
+    boost::system::error_code ignored;
+    socket_.close(ignored);
+  }
+  // the server's last Error says better why than the closed socket
+  const v1::Error& reason = last_word_ ? *last_word_ : why;
+  std::unordered_map<std::uint64_t, ReplyHandler> waiting;
+  {
+    // send() checks connected_ under this lock: a request is either waiting here or told at once
+    std::lock_guard lock(handlers_mutex_);
+    connected_ = false;
+    ended_ = reason;
+    waiting.swap(handlers_);
+  }
+  v1::ServerMessage reply;
+  *reply.mutable_error() = reason;
+  for (auto& [id, handler] : waiting) {
+    reply.set_request_id(id);
+    reply.mutable_error()->set_request_id(id);
+    handler(reply);
+  }
+  if (!closing_ && !last_word_ && on_error_) on_error_(why);
 }
 
 }  // namespace felt::client

@@ -9,6 +9,7 @@
 #include <deque>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <unordered_map>
@@ -28,6 +29,7 @@ class AsyncClient {
   using ForceHandler = std::function<void(const felt::v1::ForceUpdate&, std::uint64_t)>;
   using FrameHandler = std::function<void(const felt::v1::Frame&)>;
   using EventHandler = std::function<void(const felt::v1::SceneEvent&)>;
+  using ErrorHandler = std::function<void(const felt::v1::Error&)>;
 
   AsyncClient();
   ~AsyncClient();
@@ -38,16 +40,22 @@ class AsyncClient {
   void on_force(ForceHandler handler) { on_force_ = std::move(handler); }
   void on_frame(FrameHandler handler) { on_frame_ = std::move(handler); }
   void on_event(EventHandler handler) { on_event_ = std::move(handler); }
+  /// Errors no reply handler takes: the answers to requests sent without one (a refused
+  /// ProxyUpdate), the server's last Error before it closes the connection (request id 0), and
+  /// the end of a connection that close() did not end, when the server gave no reason.
+  void on_error(ErrorHandler handler) { on_error_ = std::move(handler); }
 
   /// Connects, starts the client's thread and says Hello; throws ClientError.
   felt::v1::Welcome connect(const std::string& host, std::uint16_t port,
                             const std::string& client_name, const std::string& token = "",
                             std::chrono::milliseconds timeout = std::chrono::seconds(5));
+  /// Ends the connection; the requests still waiting get an Error.
   void close();
   /// False once the connection has ended.
   bool connected() const { return connected_; }
 
-  /// Sends `message` under a fresh request id (returned); `on_reply` gets its reply or Error.
+  /// Sends `message` under a fresh request id (returned); `on_reply` gets its reply or Error,
+  /// also when the connection ends first (at once, on the calling thread, if it has ended).
   /// Safe from any thread; never waits.
   std::uint64_t send(felt::v1::ClientMessage message, ReplyHandler on_reply = {});
   /// Sends a ProxyUpdate stamped with the steady clock; the ForceUpdate goes to on_force.
@@ -62,6 +70,8 @@ class AsyncClient {
   void write(std::string bytes);
   void write_next();
   void deliver(felt::v1::ServerMessage& message);
+  /// The connection is over: nothing more is written and every waiting request gets `why`.
+  void end(const felt::v1::Error& why);
 
   boost::asio::io_context io_;
   boost::asio::ip::tcp::socket socket_;
@@ -76,9 +86,14 @@ class AsyncClient {
   std::atomic<std::uint64_t> next_request_id_{1};
   std::mutex handlers_mutex_;
   std::unordered_map<std::uint64_t, ReplyHandler> handlers_;
+  felt::v1::Error ended_;  ///< why the connection is over, once it is (under handlers_mutex_)
+  // the client's thread only
+  bool closing_ = false;                      ///< close() ends the connection
+  std::optional<felt::v1::Error> last_word_;  ///< the server's Error with request id 0
   ForceHandler on_force_;
   FrameHandler on_frame_;
   EventHandler on_event_;
+  ErrorHandler on_error_;
   std::thread thread_;
 };
 
