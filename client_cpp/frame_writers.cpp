@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <fstream>
+#include <limits>
 
 namespace felt::client {
 namespace {
@@ -14,7 +15,32 @@ bool has_normals(const DecodedBody& body) {
   return !body.normals.empty() && body.normals.size() == body.positions.size();
 }
 
+/// `text` as an XML attribute value (a body's name is the scene's free text).
+std::string xml_escaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
 bool write_obj(std::ofstream& out, const DecodedFrame& frame) {
+  out.precision(std::numeric_limits<float>::max_digits10);  // the frame's floats, exactly
   out << "# felt frame: scene " << frame.scene_id << ", step " << frame.step
       << ", t = " << frame.sim_time << " s\n";
   std::size_t first_vertex = 1;  // OBJ indices are 1-based and global across objects
@@ -87,14 +113,15 @@ bool write_ply(std::ofstream& out, const DecodedFrame& frame) {
 }
 
 bool write_vtp(std::ofstream& out, const DecodedFrame& frame) {
+  out.precision(std::numeric_limits<float>::max_digits10);  // the frame's floats, exactly
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "<!-- felt frame: scene " << frame.scene_id << ", step " << frame.step
       << ", t = " << frame.sim_time << " s -->\n<PolyData>\n";
   for (const DecodedBody& body : frame.bodies) {
     const std::size_t triangles = body.triangles ? body.triangles->size() / 3 : 0;
-    out << "<Piece Name=\"" << body.name << "\" NumberOfPoints=\"" << vertex_count(body)
-        << "\" NumberOfPolys=\"" << triangles << "\">\n";
+    out << "<Piece Name=\"" << xml_escaped(body.name) << "\" NumberOfPoints=\""
+        << vertex_count(body) << "\" NumberOfPolys=\"" << triangles << "\">\n";
     if (has_normals(body)) {
       out << "<PointData Normals=\"Normals\"><DataArray type=\"Float32\" Name=\"Normals\" "
              "NumberOfComponents=\"3\" format=\"ascii\">\n";
@@ -157,9 +184,12 @@ bool write_frame(const std::filesystem::path& file, const DecodedFrame& frame, M
 bool write_pvd(const std::filesystem::path& file,
                const std::vector<std::pair<double, std::string>>& frames) {
   std::ofstream out(file);
+  // every digit: a scene that has run for hours has frames 1/60 s apart at 5 significant digits
+  out.precision(std::numeric_limits<double>::max_digits10);
   out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
   for (const auto& [time, name] : frames) {
-    out << "<DataSet timestep=\"" << time << "\" part=\"0\" file=\"" << name << "\"/>\n";
+    out << "<DataSet timestep=\"" << time << "\" part=\"0\" file=\"" << xml_escaped(name)
+        << "\"/>\n";
   }
   out << "</Collection>\n</VTKFile>\n";
   return static_cast<bool>(out);
