@@ -8,10 +8,10 @@
 #include <fstream>
 #include <iostream>
 #include <mutex>
-#include <sstream>
 #include <thread>
 
 #include "cli/commands.hpp"
+#include "cli/csv_path.hpp"
 #include "cli/progress.hpp"
 #include "core/device_path.hpp"
 #include "core/haptic_recording.hpp"
@@ -40,33 +40,6 @@ struct Sample {
   std::optional<v1::ForceUpdate> reply;
   double round_trip_us = 0;
 };
-
-/// Reads "time, x, y, z[, buttons]" lines (# comments allowed) into a sampled path.
-DevicePath read_csv_path(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "cannot read " + file);
-  DevicePath path;
-  path.shape = DevicePath::Shape::kSamples;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (line.empty() || line[0] == '#' || line.starts_with("time")) continue;
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream fields(line);
-    DeviceSample s;
-    if (!(fields >> s.time >> s.position.x() >> s.position.y() >> s.position.z())) {
-      throw ClientError(v1::ERROR_CODE_BAD_REQUEST, file + ":" + std::to_string(number) +
-                                                        ": expected time, x, y, z[, buttons]");
-    }
-    fields >> s.buttons;
-    if (!path.samples.empty() && s.time <= path.samples.back().time) {
-      throw ClientError(v1::ERROR_CODE_BAD_REQUEST,
-                        file + ":" + std::to_string(number) + ": times must increase");
-    }
-    path.samples.push_back(s);
-  }
-  if (path.samples.empty()) throw ClientError(v1::ERROR_CODE_BAD_REQUEST, file + ": no samples");
-  return path;
-}
 
 DevicePath make_path(const DeviceOptions& o) {
   const auto need = [](const std::vector<double>& v, const char* flag) {

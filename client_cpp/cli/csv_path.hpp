@@ -1,0 +1,15 @@
+#pragma once
+// A device path from a CSV file of samples (felt touch --path csv).
+
+#include <string>
+
+#include "core/device_path.hpp"
+
+namespace felt::cli {
+
+/// Reads "time, x, y, z[, buttons]" lines (times increasing; blank lines, # comments and a
+/// header starting with "time" skipped) into a sampled path. Throws ClientError naming the
+/// file and the line of the first fault.
+DevicePath read_csv_path(const std::string& file);
+
+}  // namespace felt::cli
