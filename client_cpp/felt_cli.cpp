@@ -1,6 +1,7 @@
 // felt: the command-line client of feltd. The commands live in cli/.
 
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -297,7 +298,12 @@ int main(int argc, char** argv) {
     if (floor_cmd->parsed()) return bench_floor(floor);
     return bench_latency(common, bench);
   } catch (const felt::client::ClientError& e) {
-    std::cerr << "felt: " << e.what() << "\n";
+    std::cerr << "felt: " << e.what();
+    // the code the server refused with, as docs/protocol.md names it
+    if (e.code() != v1::ERROR_CODE_UNSPECIFIED) {
+      std::cerr << " (" << v1::ErrorCode_Name(e.code()).substr(std::strlen("ERROR_CODE_")) << ")";
+    }
+    std::cerr << "\n";
     return 1;
   }
 }
