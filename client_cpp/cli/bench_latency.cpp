@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "cli/commands.hpp"
+#include "cli/first_error.hpp"
 #include "cli/latency_table.hpp"
 #include "cli/progress.hpp"
 
@@ -36,11 +37,13 @@ int bench_latency(const Common& common, const BenchOptions& o) {
   if (o.clients < 1 || o.clients > 64) {
     throw client::ClientError(v1::ERROR_CODE_BAD_REQUEST, "--clients must be 1 to 64");
   }
+  FirstError error;  // any device's: every device stops (it outlives their handlers)
   std::vector<std::unique_ptr<Device>> devices;
   std::uint64_t scene = common.join;
   for (int c = 0; c < o.clients; ++c) {
     auto device = std::make_unique<Device>();
     Device* d = device.get();
+    d->client.on_error([&error](const v1::Error& e) { error.keep(e); });
     d->client.on_force([d](const v1::ForceUpdate& force, std::uint64_t received_us) {
       std::lock_guard lock(d->mutex);
       d->samples.add(static_cast<double>(force.client_time_us()),
@@ -68,7 +71,9 @@ int bench_latency(const Common& common, const BenchOptions& o) {
     if (c == 0 && scene == 0) {
       v1::ClientMessage ask;
       ask.mutable_get_stats();
-      scene = d->client.request(ask).stats().scene().scene_id();
+      const v1::ServerMessage reply = d->client.request(ask);
+      client::check_reply(reply, v1::ServerMessage::kStats);
+      scene = reply.stats().scene().scene_id();
       if (scene == 0) scene = welcome.scene_id();
     }
     if (o.frame_rate > 0) {
@@ -98,7 +103,7 @@ int bench_latency(const Common& common, const BenchOptions& o) {
       run_paced_devices(o.clients, o.rate, static_cast<std::uint64_t>(o.seconds * o.rate),
                         [&](int c, std::uint64_t k) {
                           Device& d = *devices[c];
-                          if (!d.client.connected()) return false;
+                          if (error.any()) return false;
                           d.client.send_proxy_update(0, {o.at[0] + 0.01 * c, o.at[1], o.at[2]});
                           ++d.sent;
                           if (c == 0) progress.update(static_cast<double>(k) / o.rate);
@@ -125,6 +130,7 @@ int bench_latency(const Common& common, const BenchOptions& o) {
     all.append(d.samples);
     if (csv) d.samples.write_csv(csv, c);
   }
+  error.throw_if_any();
   const std::size_t answered = all.round_trips.size();
   print_latency_table(
       {.clients = o.clients,

@@ -12,6 +12,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/csv_path.hpp"
+#include "cli/first_error.hpp"
 #include "cli/progress.hpp"
 #include "core/device_path.hpp"
 #include "core/haptic_recording.hpp"
@@ -79,22 +80,25 @@ double path_duration(const DeviceOptions& o, const DevicePath& path) {
 }
 
 /// Sends `path` at `times` (s after the start) as updates of proxy `proxy` and waits for the
-/// replies; each sample has its reply, if one came.
+/// replies; each sample has its reply, if one came. The first Error the server sends (a refused
+/// update, or why it closed the connection) stops the device and is thrown as a ClientError.
 std::vector<Sample> drive(const Common& common, const DevicePath& path,
                           const std::vector<double>& times, std::uint32_t proxy,
                           const char* label) {
   std::mutex mutex;
   std::vector<std::pair<v1::ForceUpdate, std::uint64_t>> replies;
+  FirstError error;
   client::AsyncClient client;
   client.on_force([&](const v1::ForceUpdate& force, std::uint64_t received_us) {
     std::lock_guard lock(mutex);
     replies.emplace_back(force, received_us);
   });
+  client.on_error([&](const v1::Error& e) { error.keep(e); });
   connect(client, common, "felt-device");
   std::vector<Sample> samples(times.size());
   Progress progress(label, times.empty() ? 0 : times.back());
   const Clock::time_point start = Clock::now();
-  for (std::size_t k = 0; k < times.size() && client.connected(); ++k) {
+  for (std::size_t k = 0; k < times.size() && !error.any(); ++k) {
     std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
                                               std::chrono::duration<double>(times[k])));
     Sample& s = samples[k];
@@ -116,7 +120,7 @@ std::vector<Sample> drive(const Common& common, const DevicePath& path,
   }
   progress.finish();
   const auto deadline = Clock::now() + std::chrono::seconds(2);
-  while (Clock::now() < deadline) {
+  while (Clock::now() < deadline && !error.any()) {
     {
       std::lock_guard lock(mutex);
       if (replies.size() >= times.size()) break;
@@ -124,6 +128,7 @@ std::vector<Sample> drive(const Common& common, const DevicePath& path,
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   client.close();
+  error.throw_if_any();
   std::lock_guard lock(mutex);
   // replies come back in order; match them to their updates by the echoed stamp
   std::size_t k = 0;
