@@ -164,7 +164,8 @@ int bench_floor(const BenchOptions& o) {
                       std::memcpy(request.data(), &sent_us, sizeof sent_us);
                       if (!write_all(connection.fd, request.data(), request.size())) return false;
                       ++connection.sent;
-                      if (c == 0) progress.update(static_cast<double>(k) / o.rate);
+                      if (c == 0)
+                        progress.update(static_cast<double>(k + 1) / o.rate);  // ticks done
                       return true;
                     });
   progress.finish();

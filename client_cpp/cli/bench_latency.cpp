@@ -106,7 +106,8 @@ int bench_latency(const Common& common, const BenchOptions& o) {
                           if (error.any()) return false;
                           d.client.send_proxy_update(0, {o.at[0] + 0.01 * c, o.at[1], o.at[2]});
                           ++d.sent;
-                          if (c == 0) progress.update(static_cast<double>(k) / o.rate);
+                          if (c == 0)
+                            progress.update(static_cast<double>(k + 1) / o.rate);  // ticks done
                           return true;
                         });
   progress.finish();

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/progress.hpp"
 
 namespace felt::cli {
 
@@ -34,7 +35,11 @@ nlohmann::json body_entry(const char* type, const std::string& name) {
 int add(const Common& common, const std::string& body_json) {
   client::Client client;
   connect(client, common);
-  const v1::BodyInfo body = client.add_body(body_json).body();
+  v1::BodyInfo body;
+  {
+    Spinner waiting("adding the body");  // a big mesh is voxelized first
+    body = client.add_body(body_json).body();
+  }
   std::printf("body %u: %s \"%s\", %u vertices, %u triangles\n", body.body_id(),
               body.kind().c_str(), body.name().c_str(), body.particles(), body.triangles());
   return 0;

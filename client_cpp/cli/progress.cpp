@@ -33,4 +33,31 @@ void Progress::finish() {
   std::fprintf(stderr, "\n");
 }
 
+Spinner::Spinner(std::string label) : label_(std::move(label)) {
+  if (isatty(STDERR_FILENO)) thread_ = std::thread([this] { spin(); });
+}
+
+Spinner::~Spinner() {
+  if (!thread_.joinable()) return;
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  stop_.notify_one();
+  thread_.join();
+  std::fprintf(stderr, "\r\033[K");
+  std::fflush(stderr);
+}
+
+void Spinner::spin() {
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_lock lock(mutex_);
+  for (int turn = 0; !stopping_; ++turn) {
+    const std::chrono::duration<double> waited = std::chrono::steady_clock::now() - start;
+    std::fprintf(stderr, "\r%s %c %.1f s\033[K", label_.c_str(), "|/-\\"[turn % 4], waited.count());
+    std::fflush(stderr);
+    stop_.wait_for(lock, std::chrono::milliseconds(100), [this] { return stopping_; });
+  }
+}
+
 }  // namespace felt::cli

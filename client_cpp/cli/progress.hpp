@@ -1,8 +1,14 @@
 #pragma once
-// A one-line progress display on the terminal for anything long (watch, touch, bench).
+// One-line progress displays on the terminal for anything long: a bar for what counts its way
+// to an end (watch, touch, bench), a spinner with the time waited for a single long request (a
+// load that builds a big scene). Neither shows anything unless standard error is a terminal, so
+// output to pipes and files stays clean.
 
 #include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <string>
+#include <thread>
 
 namespace felt::cli {
 
@@ -21,6 +27,25 @@ class Progress {
   bool enabled_;
   bool finished_ = false;
   std::chrono::steady_clock::time_point last_draw_{};
+};
+
+class Spinner {
+ public:
+  /// Shows `label`, a spinner and the seconds since, redrawn 10 times a second until destroyed.
+  explicit Spinner(std::string label);
+  /// Stops and clears the line.
+  ~Spinner();
+  Spinner(const Spinner&) = delete;
+  Spinner& operator=(const Spinner&) = delete;
+
+ private:
+  void spin();
+
+  std::string label_;
+  std::mutex mutex_;
+  std::condition_variable stop_;
+  bool stopping_ = false;
+  std::thread thread_;
 };
 
 }  // namespace felt::cli

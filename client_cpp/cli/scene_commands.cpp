@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "cli/commands.hpp"
+#include "cli/progress.hpp"
 #include "wire/host_port.hpp"
 
 namespace felt::cli {
@@ -38,7 +39,10 @@ v1::Welcome connect(client::Client& client, const Common& common, const std::str
   const wire::HostPort address = address_of(common);
   client.connect(address.host, address.port);
   v1::Welcome welcome = client.hello(name, common.token);
-  if (!common.scene.empty()) client.load_scene_by_name(common.scene);
+  if (!common.scene.empty()) {
+    Spinner waiting("loading " + common.scene);
+    client.load_scene_by_name(common.scene);
+  }
   if (common.join != 0) client.join_scene(common.join);
   return welcome;
 }
@@ -49,6 +53,7 @@ v1::Welcome connect(client::AsyncClient& client, const Common& common, const std
   v1::ClientMessage message;
   if (!common.scene.empty()) {
     message.mutable_load_scene()->set_name(common.scene);
+    Spinner waiting("loading " + common.scene);
     client.request(message);
   }
   if (common.join != 0) {
@@ -111,7 +116,12 @@ int load(const Common& common, const LoadOptions& options) {
   load.set_shared(options.shared);
   // the scene outlives this command: others join it with --join
   load.set_keep(true);
-  print_bodies(client.request(message, v1::ServerMessage::kSceneLoaded).scene_loaded());
+  v1::ServerMessage loaded;
+  {
+    Spinner waiting("loading " + (options.name.empty() ? options.json_file : options.name));
+    loaded = client.request(message, v1::ServerMessage::kSceneLoaded);
+  }
+  print_bodies(loaded.scene_loaded());
   return 0;
 }
 
