@@ -75,14 +75,21 @@ CommandResult check_vtk(const std::vector<std::string>& files) {
   return run_command(argv);
 }
 
-class FrameWriters : public ::testing::TestWithParam<MeshFormat> {};
+class FrameWriters : public ::testing::TestWithParam<MeshFormat> {
+ protected:
+  /// `frame` written in the format under test, read back.
+  MeshFile written(const DecodedFrame& frame) {
+    const auto file = dir_ / (std::string("frame") + client::mesh_extension(GetParam()));
+    EXPECT_TRUE(client::write_frame(file, frame, GetParam()));
+    return read_mesh_file(file);
+  }
+
+  ScratchDirectory dir_;
+};
 
 TEST_P(FrameWriters, AFrameReadsBackVertexForVertexAndTriangleForTriangle) {
-  ScratchDirectory dir;
   const DecodedFrame frame = two_bodies(true);
-  const auto file = dir / (std::string("frame") + client::mesh_extension(GetParam()));
-  ASSERT_TRUE(client::write_frame(file, frame, GetParam()));
-  const MeshFile mesh = read_mesh_file(file);
+  const MeshFile mesh = written(frame);
   EXPECT_EQ(mesh.vertices, triples(frame.bodies, &DecodedBody::positions));
   EXPECT_EQ(mesh.normals, triples(frame.bodies, &DecodedBody::normals));
   EXPECT_EQ(mesh.triangles, all_triangles(frame));
@@ -92,11 +99,8 @@ TEST_P(FrameWriters, AFrameReadsBackVertexForVertexAndTriangleForTriangle) {
 }
 
 TEST_P(FrameWriters, NormalsAreWrittenOnlyForTheBodiesThatHaveThem) {
-  ScratchDirectory dir;
   const DecodedFrame frame = two_bodies(false);
-  const auto file = dir / (std::string("frame") + client::mesh_extension(GetParam()));
-  ASSERT_TRUE(client::write_frame(file, frame, GetParam()));
-  const MeshFile mesh = read_mesh_file(file);
+  const MeshFile mesh = written(frame);
   EXPECT_EQ(mesh.vertices.size(), 8u);
   // a PLY vertex has normals or not, for every body
   EXPECT_EQ(mesh.normals.size(), GetParam() == MeshFormat::kPly ? 0u : 4u);
@@ -104,12 +108,9 @@ TEST_P(FrameWriters, NormalsAreWrittenOnlyForTheBodiesThatHaveThem) {
 }
 
 TEST_P(FrameWriters, ABodyWhoseTrianglesAreUnknownHasVerticesOnly) {
-  ScratchDirectory dir;
   DecodedFrame frame = two_bodies(true);
   frame.bodies[0].triangles = nullptr;
-  const auto file = dir / (std::string("frame") + client::mesh_extension(GetParam()));
-  ASSERT_TRUE(client::write_frame(file, frame, GetParam()));
-  const MeshFile mesh = read_mesh_file(file);
+  const MeshFile mesh = written(frame);
   EXPECT_EQ(mesh.vertices.size(), 8u);
   ASSERT_EQ(mesh.triangles.size(), 4u);
   EXPECT_EQ(mesh.triangles[0], (std::array<std::uint32_t, 3>{4, 6, 5}));
