@@ -93,8 +93,9 @@ int bench_latency(const Common& common, const BenchOptions& o) {
   std::vector<std::unique_ptr<client::Client>> slow;
   for (int s = 0; s < o.slow_readers; ++s) {
     auto reader = std::make_unique<client::Client>();
-    connect(*reader, Common{common.server, common.token, "", scene}, "felt-slow-reader");
-    reader->subscribe_frames(1000);
+    const v1::Welcome welcome =
+        connect(*reader, Common{common.server, common.token, "", scene}, "felt-slow-reader");
+    reader->subscribe_frames(welcome.limits().max_frame_rate_hz());
     slow.push_back(std::move(reader));
   }
 

@@ -166,7 +166,7 @@ TEST_F(AsyncClientTest, ErrorsGoToTheirHandlerOrToOnError) {
   EXPECT_EQ(errors.items()[0].code(), v1::ERROR_CODE_BAD_REQUEST);
   EXPECT_EQ(errors.items()[0].message(), "position must be three finite numbers");
   EXPECT_EQ(errors.items()[1].code(), v1::ERROR_CODE_LIMIT_EXCEEDED);
-  EXPECT_EQ(errors.items()[1].message(), "at most 16 proxies per client");
+  EXPECT_EQ(errors.items()[1].message(), "at most 16 proxies per client (--max-proxies)");
   // request() throws its Error
   try {
     client.request(close);
@@ -256,7 +256,7 @@ TEST_F(OneClientOnly, ConnectingToAFullServerSaysSoAtOnce) {
     ADD_FAILURE() << "a second client was let in";
   } catch (const ClientError& e) {
     EXPECT_EQ(e.code(), v1::ERROR_CODE_LIMIT_EXCEEDED) << e.what();
-    EXPECT_EQ(std::string(e.what()), "the server already serves 1 clients");
+    EXPECT_EQ(std::string(e.what()), "the server already serves 1 clients (--max-clients)");
   }
   EXPECT_LT(Clock::now() - start, 2s);  // not the Hello's 5 s timeout
   EXPECT_FALSE(second.connected());

@@ -183,15 +183,16 @@ TEST_F(FeltCliTest, ABadRecordingIsRefusedWithItsLine) {
 }
 
 TEST_F(FeltCliTest, BenchLatencyPrintsARowOfRoundTrips) {
+  // with a client that takes frames at the server's highest rate and never reads them
   const CommandResult r = felt({"bench-latency", "--seconds", "0.3", "--rate", "200", "--clients",
-                                "2", "--frame-rate", "10"});
+                                "2", "--frame-rate", "10", "--slow-readers", "1"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(r.out.find("| clients | slow readers | rate Hz | updates | answered | p50 us |"), 0u)
       << r.out;
   // 2 clients x 0.3 s x 200 Hz, every one answered
   const auto row = numbers_in(
       r.out,
-      R"(\n\| 2 \| 0 \| 200 \| (\d+) \| (\d+) \| (\d+) \| (\d+) \| (\d+) \| (\d+) \| (\d+) \|)");
+      R"(\n\| 2 \| 1 \| 200 \| (\d+) \| (\d+) \| (\d+) \| (\d+) \| (\d+) \| (\d+) \| (\d+) \|)");
   ASSERT_EQ(row.size(), 7u) << r.out;
   EXPECT_EQ(row[0], 120);
   EXPECT_EQ(row[1], 120);
