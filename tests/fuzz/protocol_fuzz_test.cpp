@@ -123,74 +123,64 @@ class RandomRequests {
 
   void fill(pb::Message& message, int depth) {
     const pb::Descriptor* type = message.GetDescriptor();
-    const pb::Reflection* reflection = message.GetReflection();
     for (int i = 0; i < type->field_count(); ++i) {
       const pb::FieldDescriptor* field = type->field(i);
       if (one_in(3)) continue;  // left at its default
-      if (!field->is_repeated()) {
-        set(message, *reflection, field, depth);
-        continue;
-      }
       // long lists in the request itself; nested in each other they would pass any frame limit
-      const std::size_t count = depth <= 1 && one_in(20) ? 5000 : pick(5);
-      for (std::size_t n = 0; n < count; ++n) add(message, *reflection, field, depth);
+      const std::size_t count = !field->is_repeated()      ? 1
+                                : depth <= 1 && one_in(20) ? 5000
+                                                           : pick(5);
+      for (std::size_t n = 0; n < count; ++n) put(message, field, depth);
     }
   }
 
-  void set(pb::Message& m, const pb::Reflection& r, const pb::FieldDescriptor* f, int depth) {
+  /// Sets field `f` of `m`, or adds an element to it when it is repeated, at random.
+  void put(pb::Message& m, const pb::FieldDescriptor* f, int depth) {
     using F = pb::FieldDescriptor;
+    const pb::Reflection& r = *m.GetReflection();
+    const bool many = f->is_repeated();
     switch (f->cpp_type()) {
-      case F::CPPTYPE_INT32:
-        return r.SetInt32(&m, f, static_cast<std::int32_t>(integer()));
-      case F::CPPTYPE_INT64:
-        return r.SetInt64(&m, f, integer());
-      case F::CPPTYPE_UINT32:
-        return r.SetUInt32(&m, f, static_cast<std::uint32_t>(integer()));
-      case F::CPPTYPE_UINT64:
-        return r.SetUInt64(&m, f, static_cast<std::uint64_t>(integer()));
-      case F::CPPTYPE_DOUBLE:
-        return r.SetDouble(&m, f, real());
-      case F::CPPTYPE_FLOAT:
-        return r.SetFloat(&m, f, static_cast<float>(real()));
-      case F::CPPTYPE_BOOL:
-        return r.SetBool(&m, f, one_in(2));
-      case F::CPPTYPE_ENUM:
-        return r.SetEnumValue(&m, f, static_cast<int>(pick(8)) - 1);
-      case F::CPPTYPE_STRING:
-        return r.SetString(&m, f, text());
+      case F::CPPTYPE_INT32: {
+        const auto v = static_cast<std::int32_t>(integer());
+        return many ? r.AddInt32(&m, f, v) : r.SetInt32(&m, f, v);
+      }
+      case F::CPPTYPE_INT64: {
+        const std::int64_t v = integer();
+        return many ? r.AddInt64(&m, f, v) : r.SetInt64(&m, f, v);
+      }
+      case F::CPPTYPE_UINT32: {
+        const auto v = static_cast<std::uint32_t>(integer());
+        return many ? r.AddUInt32(&m, f, v) : r.SetUInt32(&m, f, v);
+      }
+      case F::CPPTYPE_UINT64: {
+        const auto v = static_cast<std::uint64_t>(integer());
+        return many ? r.AddUInt64(&m, f, v) : r.SetUInt64(&m, f, v);
+      }
+      case F::CPPTYPE_DOUBLE: {
+        const double v = real();
+        return many ? r.AddDouble(&m, f, v) : r.SetDouble(&m, f, v);
+      }
+      case F::CPPTYPE_FLOAT: {
+        const auto v = static_cast<float>(real());
+        return many ? r.AddFloat(&m, f, v) : r.SetFloat(&m, f, v);
+      }
+      case F::CPPTYPE_BOOL: {
+        const bool v = one_in(2);
+        return many ? r.AddBool(&m, f, v) : r.SetBool(&m, f, v);
+      }
+      case F::CPPTYPE_ENUM: {  // unknown values too: proto3 keeps them
+        const int v = static_cast<int>(pick(8)) - 1;
+        return many ? r.AddEnumValue(&m, f, v) : r.SetEnumValue(&m, f, v);
+      }
+      case F::CPPTYPE_STRING: {
+        std::string v = text();
+        return many ? r.AddString(&m, f, std::move(v)) : r.SetString(&m, f, std::move(v));
+      }
       case F::CPPTYPE_MESSAGE:
-        if (depth < 4) fill(*r.MutableMessage(&m, f), depth + 1);
+        if (depth < 4) fill(many ? *r.AddMessage(&m, f) : *r.MutableMessage(&m, f), depth + 1);
         return;
     }
   }
-
-  void add(pb::Message& m, const pb::Reflection& r, const pb::FieldDescriptor* f, int depth) {
-    using F = pb::FieldDescriptor;
-    switch (f->cpp_type()) {
-      case F::CPPTYPE_INT32:
-        return r.AddInt32(&m, f, static_cast<std::int32_t>(integer()));
-      case F::CPPTYPE_INT64:
-        return r.AddInt64(&m, f, integer());
-      case F::CPPTYPE_UINT32:
-        return r.AddUInt32(&m, f, static_cast<std::uint32_t>(integer()));
-      case F::CPPTYPE_UINT64:
-        return r.AddUInt64(&m, f, static_cast<std::uint64_t>(integer()));
-      case F::CPPTYPE_DOUBLE:
-        return r.AddDouble(&m, f, real());
-      case F::CPPTYPE_FLOAT:
-        return r.AddFloat(&m, f, static_cast<float>(real()));
-      case F::CPPTYPE_BOOL:
-        return r.AddBool(&m, f, one_in(2));
-      case F::CPPTYPE_ENUM:
-        return r.AddEnumValue(&m, f, static_cast<int>(pick(8)) - 1);
-      case F::CPPTYPE_STRING:
-        return r.AddString(&m, f, text());
-      case F::CPPTYPE_MESSAGE:
-        if (depth < 4) fill(*r.AddMessage(&m, f), depth + 1);
-        return;
-    }
-  }
-
   std::mt19937_64 rng_;
 };
 
