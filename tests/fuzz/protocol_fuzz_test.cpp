@@ -11,7 +11,6 @@
 #include <signal.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -24,6 +23,7 @@
 #include <gtest/gtest.h>
 
 #include "felt_client.hpp"
+#include "fuzz_settings.hpp"
 #include "protocol/feltd_process.hpp"
 
 namespace felt::test {
@@ -32,11 +32,6 @@ namespace {
 namespace pb = google::protobuf;
 namespace v1 = felt::v1;
 using namespace std::chrono_literals;
-
-std::uint64_t from_environment(const char* name, std::uint64_t fallback) {
-  const char* value = std::getenv(name);
-  return value ? std::strtoull(value, nullptr, 10) : fallback;
-}
 
 class RandomRequests {
  public:
@@ -221,20 +216,27 @@ Outcome await_reply(client::Client& client, std::uint64_t request_id) {
 TEST(ProtocolFuzz, EveryRandomRequestIsAnsweredAndTheServerServesOnAfterward) {
   FeltdProcess server({"--scene-dir", FELT_SCENE_DIR, "--scene",
                        std::string(FELT_SCENE_DIR) + "/default.json", "--max-scenes", "6"});
-  RandomRequests requests(from_environment("FELT_FUZZ_SEED", 20261206));
-  const std::uint64_t cases = from_environment("FELT_FUZZ_CASES", 300);
+  const FuzzSettings settings = fuzz_settings(300);
+  RandomRequests requests(settings.seed);
+  const std::uint64_t cases = settings.cases;
   constexpr int kConnections = 3;
   std::vector<std::unique_ptr<client::Client>> clients;
   for (int c = 0; c < kConnections; ++c) clients.push_back(connected(server, c));
+  // the largest request feltd takes (--max-frame-bytes), as its Welcome says
+  const std::uint64_t max_frame_bytes = [&] {
+    client::Client probe;
+    probe.connect("127.0.0.1", server.port());
+    return probe.hello("fuzz-limits").limits().max_frame_bytes();
+  }();
 
   int succeeded = 0, refused = 0, closed = 0;
   for (std::uint64_t n = 0; n < cases && !HasFailure(); ++n) {
     const int c = static_cast<int>(n % kConnections);
     v1::ClientMessage message = requests.next();
     SCOPED_TRACE("case " + std::to_string(n) + ": " + message.ShortDebugString().substr(0, 2000));
-    // past feltd's --max-frame-bytes (4 MiB): refused with FRAME_TOO_LARGE, and the connection
-    // closes, maybe while the client is still sending it
-    const bool oversized = message.ByteSizeLong() > (4u << 20);
+    // past it: refused with FRAME_TOO_LARGE, and the connection closes, maybe while the client
+    // is still sending it
+    const bool oversized = message.ByteSizeLong() > max_frame_bytes;
     std::uint64_t id = 0;
     try {
       id = clients[c]->send(message);
@@ -248,7 +250,9 @@ TEST(ProtocolFuzz, EveryRandomRequestIsAnsweredAndTheServerServesOnAfterward) {
       }
     }
     const Outcome outcome = id == 0 ? Outcome::kConnectionClosed : await_reply(*clients[c], id);
-    if (oversized) EXPECT_EQ(outcome, Outcome::kConnectionClosed);
+    if (oversized) {
+      EXPECT_EQ(outcome, Outcome::kConnectionClosed);
+    }
     ASSERT_NE(outcome, Outcome::kNoAnswer);
     ASSERT_TRUE(server.running());
     if (outcome == Outcome::kSucceeded) ++succeeded;

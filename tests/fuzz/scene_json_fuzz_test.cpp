@@ -10,7 +10,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -21,6 +20,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "fuzz_settings.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace felt {
@@ -31,11 +31,6 @@ namespace fs = std::filesystem;
 
 /// What the server allows a client's scene (ServerOptions::max_particles_per_scene).
 constexpr std::size_t kClientParticleBudget = 250'000;
-
-std::uint64_t from_environment(const char* name, std::uint64_t fallback) {
-  const char* value = std::getenv(name);
-  return value ? std::strtoull(value, nullptr, 10) : fallback;
-}
 
 /// The scene files of scenes/ as JSON: the seeds the mutations start from.
 std::vector<std::pair<std::string, json>> seed_scenes() {
@@ -168,8 +163,9 @@ Outcome load_and_step(const json& document) {
 TEST(SceneJsonFuzz, AMutatedSceneLoadsOrIsRefusedAndNeverLeaksNonFiniteState) {
   const auto seeds = seed_scenes();
   ASSERT_GE(seeds.size(), 8u) << "the scenes directory moved?";
-  std::mt19937_64 rng(from_environment("FELT_FUZZ_SEED", 20261206));
-  const std::uint64_t cases = from_environment("FELT_FUZZ_CASES", 400);
+  const test::FuzzSettings settings = test::fuzz_settings(400);
+  std::mt19937_64 rng(settings.seed);
+  const std::uint64_t cases = settings.cases;
 
   std::uint64_t loaded = 0;
   double slowest_seconds = 0;
@@ -189,18 +185,17 @@ TEST(SceneJsonFuzz, AMutatedSceneLoadsOrIsRefusedAndNeverLeaksNonFiniteState) {
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (std::getenv("FELT_FUZZ_SLOW") && seconds > std::atof(std::getenv("FELT_FUZZ_SLOW"))) {
-      std::cout << label << " took " << seconds << " s: " << document.dump() << "\n";
-    }
-    if (seconds > slowest_seconds) {
+    if (seconds > slowest_seconds) {  // named with its document, to run it again
       slowest_seconds = seconds;
-      slowest = label;
+      slowest = label + ": " + document.dump();
     }
   }
   // the mutations must leave enough scenes loadable for the stepping to be tested too
-  if (!HasFailure()) EXPECT_GT(loaded, cases / 10);
-  std::cout << loaded << " of " << cases << " mutated scenes loaded; the slowest (" << slowest
-            << ") took " << slowest_seconds << " s\n";
+  if (!HasFailure()) {
+    EXPECT_GT(loaded, cases / 10);
+  }
+  std::cout << loaded << " of " << cases << " mutated scenes loaded; the slowest took "
+            << slowest_seconds << " s, " << slowest << "\n";
 }
 
 }  // namespace
