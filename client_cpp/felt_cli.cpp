@@ -9,9 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.hpp"
-#include "runtime/cpu_wakeup_latency.hpp"
-#include "runtime/idle_core_spinners.hpp"
-#include "runtime/thread_latency.hpp"
+#include "scheduling/latency_options.hpp"
 
 namespace {
 
@@ -233,30 +231,17 @@ int main(int argc, char** argv) {
       ->capture_default_str();
 
   CLI11_PARSE(app, argc, argv);
-  if (slice_us > 0) {
-    const auto requested = felt::request_time_slice(std::chrono::microseconds(slice_us),
-                                                    felt::SliceInheritance::kAlsoThreadsItStarts);
-    if (!requested) std::cerr << "felt: --slice-us: " << requested.error() << "\n";
-  }
-  std::optional<felt::CpuWakeupLatencyLimit> wakeup_limit;
+  felt::LatencyOptions latency;
+  latency.slice = std::chrono::microseconds(slice_us);
+  latency.slice_inheritance = felt::SliceInheritance::kAlsoThreadsItStarts;
   if (wakeup_latency_us >= 0) {
-    auto held = felt::CpuWakeupLatencyLimit::hold(std::chrono::microseconds(wakeup_latency_us));
-    if (held) {
-      wakeup_limit = std::move(*held);
-    } else {
-      std::cerr << "felt: --cpu-wakeup-latency-us: " << held.error() << "\n";
-    }
+    latency.cpu_wakeup_latency = std::chrono::microseconds(wakeup_latency_us);
   }
-  std::unique_ptr<felt::IdleCoreSpinners> spinners;
-  if (spin_idle_cores) {
-    auto started = felt::IdleCoreSpinners::start(std::chrono::milliseconds(1));
-    if (started) {
-      spinners = std::move(*started);
-      spinners->spin_until_destroyed();
-    } else {
-      std::cerr << "felt: --spin-idle-cores: " << started.error() << "\n";
-    }
-  }
+  latency.spin_until_exit = spin_idle_cores;
+  const felt::AppliedLatency applied_latency =
+      felt::apply(latency, {"felt's threads", "--slice-us", "--realtime", "--cpu-wakeup-latency-us",
+                            "--spin-idle-cores"});
+  for (const std::string& error : applied_latency.errors()) std::cerr << "felt: " << error << "\n";
   try {
     if (hello_cmd->parsed()) return hello(common);
     if (scenes_cmd->parsed()) return list_scenes(common);

@@ -16,12 +16,10 @@
 
 #include "net/server.hpp"
 #include "runtime/batch_run.hpp"
-#include "runtime/cpu_wakeup_latency.hpp"
-#include "runtime/idle_core_spinners.hpp"
-#include "runtime/thread_latency.hpp"
-#include "runtime/thread_name.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/scene_overrides.hpp"
+#include "scheduling/latency_options.hpp"
+#include "scheduling/thread_name.hpp"
 #include "wire/host_port.hpp"
 
 namespace {
@@ -52,6 +50,21 @@ struct RunOptions {
   std::string replay;
 };
 
+/// The network threads' requests of the scheduler, named as feltd's flags are.
+const felt::LatencyNames kNetworkLatencyNames{"network threads", "--network-slice-us", "--realtime",
+                                              "--cpu-wakeup-latency-us", "--spin-idle-cores-ms"};
+
+felt::LatencyOptions latency_options(const ServeOptions& options) {
+  felt::LatencyOptions latency;
+  latency.slice = std::chrono::microseconds(options.network_slice_us);
+  latency.realtime_priority = options.realtime_priority;
+  if (options.cpu_wakeup_latency_us >= 0) {
+    latency.cpu_wakeup_latency = std::chrono::microseconds(options.cpu_wakeup_latency_us);
+  }
+  latency.spin_idle_cores = std::chrono::milliseconds(options.spin_idle_cores_ms);
+  return latency;
+}
+
 /// Mesh files of a scene resolve inside the scene directory, as they do for clients.
 felt::SceneLoadOptions scene_options(const std::filesystem::path& scene_dir) {
   felt::SceneLoadOptions options;
@@ -79,7 +92,6 @@ int serve(const ServeOptions& options) {
     return 2;
   }
   felt::SceneRegistry scenes;
-  std::unique_ptr<felt::IdleCoreSpinners> spinners;  // outlives every session that touches it
   felt::net::ServerContext context{scenes, felt::SceneDirectory(options.scene_dir), options.limits,
                                    FELT_VERSION};
   // named as feltd's other threads are (for top -H, perf and scripts/trace-round-trips); the
@@ -117,18 +129,9 @@ int serve(const ServeOptions& options) {
     if (context.default_scene == 0) context.default_scene = id;
   }
 
-  // started before the server listens, so that they are there for its first client
-  std::string spinners_error;
-  if (options.spin_idle_cores_ms > 0) {
-    auto started =
-        felt::IdleCoreSpinners::start(std::chrono::milliseconds(options.spin_idle_cores_ms));
-    if (started) {
-      spinners = std::move(*started);
-      context.idle_core_spinners = spinners.get();
-    } else {
-      spinners_error = started.error();
-    }
-  }
+  // the spinners start before the server listens, so that they are there for its first client
+  felt::AppliedLatency latency = felt::apply(latency_options(options), kNetworkLatencyNames);
+  context.idle_core_spinners = latency.spinners();
   felt::net::IoPool io(options.io_threads);
   felt::net::Server server(io, context);
   const auto endpoint = server.listen(address->host, address->port);
@@ -185,58 +188,16 @@ int serve(const ServeOptions& options) {
   // more than one thread runs the network, each its own connections, so that a client's haptic
   // update is answered while another thread builds a frame for others; with a short slice, or a
   // real-time policy, they answer as soon as an update arrives instead of waiting behind the
-  // physics threads for a core. Says what it got (or why not) when `report`: once, for the
-  // first thread.
-  const auto schedule_network_thread = [&options](bool report) {
-    if (options.realtime_priority > 0) {
-      const auto made = felt::make_this_thread_realtime(options.realtime_priority);
-      if (made) {
-        if (report) {
-          std::printf("network threads: SCHED_FIFO priority %d\n", options.realtime_priority);
-        }
-        return;
-      }
-      if (report) {
-        std::fprintf(stderr, "feltd: --realtime: %s; the network keeps the normal policy\n",
-                     made.error().c_str());
-      }
-    }
-    if (options.network_slice_us == 0) return;
-    const auto requested =
-        felt::request_time_slice(std::chrono::microseconds(options.network_slice_us));
-    if (!report) return;
-    if (requested) {
-      std::printf("network threads: %d us time slice\n", options.network_slice_us);
-    } else {
-      std::fprintf(stderr, "feltd: --network-slice-us: %s\n", requested.error().c_str());
-    }
-  };
-  schedule_network_thread(true);
+  // physics threads for a core (apply() scheduled this one)
+  for (const std::string& note : latency.notes()) std::printf("%s\n", note.c_str());
+  for (const std::string& error : latency.errors()) {
+    std::fprintf(stderr, "feltd: %s\n", error.c_str());
+  }
   if (options.limits.background_nice != 0) {
     std::printf("physics and frame encoder: nice %d\n", options.limits.background_nice);
   }
-  std::optional<felt::CpuWakeupLatencyLimit> wakeup_limit;
-  if (options.cpu_wakeup_latency_us >= 0) {
-    auto held =
-        felt::CpuWakeupLatencyLimit::hold(std::chrono::microseconds(options.cpu_wakeup_latency_us));
-    if (held) {
-      wakeup_limit = std::move(*held);
-      std::printf("idle cores: wake-up latency held at %d us%s\n", options.cpu_wakeup_latency_us,
-                  options.cpu_wakeup_latency_us == 0 ? " (they poll)" : "");
-    } else {
-      std::fprintf(stderr, "feltd: --cpu-wakeup-latency-us: %s\n", held.error().c_str());
-    }
-  }
-  if (spinners) {
-    std::printf(
-        "idle cores: kept awake for %d ms after each haptic update (%zu SCHED_IDLE "
-        "spinners)\n",
-        options.spin_idle_cores_ms, spinners->cores());
-  } else if (!spinners_error.empty()) {
-    std::fprintf(stderr, "feltd: --spin-idle-cores-ms: %s\n", spinners_error.c_str());
-  }
   std::fflush(stdout);
-  io.run([&schedule_network_thread] { schedule_network_thread(false); });
+  io.run([&latency] { latency.schedule_this_thread(); });
   // an orderly end: the scenes stop (cancelling what they had queued), the loader and the frame
   // encoder finish (a frame planned after this is never encoded: its session is closing), and
   // every session still open is closed and runs down while the io_contexts still run, so that

@@ -21,7 +21,7 @@
 #include "cli/commands.hpp"
 #include "cli/latency_table.hpp"
 #include "cli/progress.hpp"
-#include "runtime/thread_latency.hpp"
+#include "scheduling/thread_latency.hpp"
 
 namespace felt::cli {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "core/device_path.hpp"
+#include "device/device_path.hpp"
 
 namespace felt::cli {
 

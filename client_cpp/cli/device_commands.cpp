@@ -14,8 +14,8 @@
 #include "cli/csv_path.hpp"
 #include "cli/first_error.hpp"
 #include "cli/progress.hpp"
-#include "core/device_path.hpp"
-#include "core/haptic_recording.hpp"
+#include "device/device_path.hpp"
+#include "device/haptic_recording.hpp"
 
 namespace felt::cli {
 

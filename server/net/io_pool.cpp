@@ -4,7 +4,7 @@
 #include <string>
 #include <thread>
 
-#include "runtime/thread_name.hpp"
+#include "scheduling/thread_name.hpp"
 
 namespace felt::net {
 

@@ -9,7 +9,7 @@
 
 #include <boost/asio/thread_pool.hpp>
 
-#include "runtime/idle_core_spinners.hpp"
+#include "scheduling/idle_core_spinners.hpp"
 #include "runtime/scene_registry.hpp"
 #include "scene/scene_directory.hpp"
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/haptic_recording.hpp"
+#include "device/haptic_recording.hpp"
 #include "scene/scene.hpp"
 
 namespace felt {

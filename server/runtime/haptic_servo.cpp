@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
-#include "runtime/thread_name.hpp"
+#include "scheduling/thread_name.hpp"
 
 namespace felt {
 

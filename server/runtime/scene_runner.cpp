@@ -7,8 +7,8 @@
 
 #include <sched.h>
 
-#include "runtime/thread_latency.hpp"
-#include "runtime/thread_name.hpp"
+#include "scheduling/thread_latency.hpp"
+#include "scheduling/thread_name.hpp"
 
 namespace felt {
 namespace {

@@ -6,7 +6,7 @@
 #include <iosfwd>
 #include <vector>
 
-#include "core/haptic_recording.hpp"
+#include "device/haptic_recording.hpp"
 #include "runtime/haptic_proxy.hpp"
 #include "scene/scene.hpp"
 

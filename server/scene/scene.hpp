@@ -4,7 +4,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/device_path.hpp"
+#include "device/device_path.hpp"
 #include "core/proxy_settings.hpp"
 #include "core/triangle_query.hpp"
 #include "core/world.hpp"

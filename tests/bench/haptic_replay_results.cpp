@@ -31,7 +31,7 @@
 #include <vector>
 
 #include "core/god_object.hpp"
-#include "core/haptic_recording.hpp"
+#include "device/haptic_recording.hpp"
 #include "core/surface_normals.hpp"
 #include "core/triangle_query.hpp"
 #include "core/world.hpp"

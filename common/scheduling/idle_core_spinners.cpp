@@ -1,4 +1,4 @@
-#include "runtime/idle_core_spinners.hpp"
+#include "scheduling/idle_core_spinners.hpp"
 
 #include <pthread.h>
 #include <sched.h>
@@ -8,7 +8,7 @@
 #include <string>
 #include <system_error>
 
-#include "runtime/thread_name.hpp"
+#include "scheduling/thread_name.hpp"
 
 namespace felt {
 namespace {

@@ -1,4 +1,4 @@
-#include "runtime/thread_name.hpp"
+#include "scheduling/thread_name.hpp"
 
 #include <pthread.h>
 

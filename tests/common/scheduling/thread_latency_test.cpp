@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/thread_latency.hpp"
+#include "scheduling/thread_latency.hpp"
 
 namespace felt {
 namespace {

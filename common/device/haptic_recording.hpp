@@ -9,20 +9,20 @@
 #include <string>
 #include <vector>
 
-#include "core/types.hpp"
+#include <Eigen/Core>
 
 namespace felt {
 
 struct HapticRecord {
-  Real time = 0;             ///< s, of the device's script
+  double time = 0;           ///< s, of the device's script
   std::uint32_t device = 0;  ///< which device of the scene
-  Vec3 position = Vec3::Zero();
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
   std::uint32_t buttons = 0;
   bool in_contact = false;
   std::uint32_t body = 0;
   std::int32_t triangle = -1;
-  Vec3 proxy = Vec3::Zero();
-  Vec3 force = Vec3::Zero();
+  Eigen::Vector3d proxy = Eigen::Vector3d::Zero();
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
 };
 
 /// CSV with a header line; doubles written exactly (17 significant digits).
@@ -35,6 +35,6 @@ std::expected<std::vector<HapticRecord>, std::string> read_recording(std::istrea
 /// Whether `replayed` found what `recorded` found: both free, or both touching the same body
 /// and triangle with proxies within `tolerance` metres.
 bool collision_equivalent(const HapticRecord& recorded, const HapticRecord& replayed,
-                          Real tolerance);
+                          double tolerance);
 
 }  // namespace felt

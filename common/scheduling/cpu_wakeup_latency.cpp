@@ -1,4 +1,4 @@
-#include "runtime/cpu_wakeup_latency.hpp"
+#include "scheduling/cpu_wakeup_latency.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>

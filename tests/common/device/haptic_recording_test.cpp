@@ -1,4 +1,4 @@
-#include "core/haptic_recording.hpp"
+#include "device/haptic_recording.hpp"
 
 #include <sstream>
 
@@ -11,13 +11,13 @@ HapticRecord touching() {
   HapticRecord r;
   r.time = 0.1234567890123;
   r.device = 2;
-  r.position = Vec3(0.1, -1.0 / 3.0, 2e-17);
+  r.position = Eigen::Vector3d(0.1, -1.0 / 3.0, 2e-17);
   r.buttons = 1;
   r.in_contact = true;
   r.body = 3;
   r.triangle = 1234;
-  r.proxy = Vec3(0.1, 0.02 / 3.0, 1e300);
-  r.force = Vec3(-0, 4.0 / 7.0, 1e-300);
+  r.proxy = Eigen::Vector3d(0.1, 0.02 / 3.0, 1e300);
+  r.force = Eigen::Vector3d(-0, 4.0 / 7.0, 1e-300);
   return r;
 }
 
@@ -78,7 +78,7 @@ TEST(HapticRecording, CollisionEquivalenceIsSameContactTriangleAndProxy) {
   b.in_contact = false;
   EXPECT_FALSE(collision_equivalent(a, b, 1));
   HapticRecord free_a, free_b;
-  free_b.proxy = Vec3(5, 5, 5);  // free updates compare only as free
+  free_b.proxy = Eigen::Vector3d(5, 5, 5);  // free updates compare only as free
   EXPECT_TRUE(collision_equivalent(free_a, free_b, 0));
 }
 

@@ -1,4 +1,4 @@
-#include "runtime/thread_latency.hpp"
+#include "scheduling/thread_latency.hpp"
 
 #include <sched.h>
 #include <sys/resource.h>

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/cpu_wakeup_latency.hpp"
+#include "scheduling/cpu_wakeup_latency.hpp"
 
 namespace felt {
 namespace {

@@ -7,7 +7,7 @@
 
 #include <thread>
 
-#include "runtime/idle_core_spinners.hpp"
+#include "scheduling/idle_core_spinners.hpp"
 #include "support/process_threads.hpp"
 
 namespace felt {

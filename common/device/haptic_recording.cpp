@@ -1,4 +1,4 @@
-#include "core/haptic_recording.hpp"
+#include "device/haptic_recording.hpp"
 
 #include <cmath>
 #include <istream>
@@ -12,7 +12,7 @@ constexpr const char* kHeader =
     "time,device,x,y,z,buttons,contact,body,triangle,proxy_x,proxy_y,proxy_z,fx,fy,fz";
 constexpr int kColumns = 15;
 
-void put(std::ostream& out, const Vec3& v) {
+void put(std::ostream& out, const Eigen::Vector3d& v) {
   out << ',' << v.x() << ',' << v.y() << ',' << v.z();
 }
 
@@ -62,13 +62,13 @@ std::expected<std::vector<HapticRecord>, std::string> read_recording(std::istrea
     HapticRecord& r = records.emplace_back();
     r.time = values[0];
     r.device = static_cast<std::uint32_t>(values[1]);
-    r.position = Vec3(values[2], values[3], values[4]);
+    r.position = Eigen::Vector3d(values[2], values[3], values[4]);
     r.buttons = static_cast<std::uint32_t>(values[5]);
     r.in_contact = values[6] != 0;
     r.body = static_cast<std::uint32_t>(values[7]);
     r.triangle = static_cast<std::int32_t>(values[8]);
-    r.proxy = Vec3(values[9], values[10], values[11]);
-    r.force = Vec3(values[12], values[13], values[14]);
+    r.proxy = Eigen::Vector3d(values[9], values[10], values[11]);
+    r.force = Eigen::Vector3d(values[12], values[13], values[14]);
     if (!r.position.allFinite() || !std::isfinite(r.time)) {
       return std::unexpected("line " + std::to_string(number) + ": not finite");
     }
@@ -77,7 +77,7 @@ std::expected<std::vector<HapticRecord>, std::string> read_recording(std::istrea
 }
 
 bool collision_equivalent(const HapticRecord& recorded, const HapticRecord& replayed,
-                          Real tolerance) {
+                          double tolerance) {
   if (recorded.in_contact != replayed.in_contact) return false;
   if (!recorded.in_contact) return true;
   return recorded.body == replayed.body && recorded.triangle == replayed.triangle &&

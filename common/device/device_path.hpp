@@ -6,14 +6,14 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/types.hpp"
+#include <Eigen/Core>
 
 namespace felt {
 
 /// A point of a sampled path: the device at `position` holding `buttons` at `time`.
 struct DeviceSample {
-  Real time = 0;  ///< s from the path's start
-  Vec3 position = Vec3::Zero();
+  double time = 0;  ///< s from the path's start
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
   std::uint32_t buttons = 0;
 };
 
@@ -25,16 +25,16 @@ struct DevicePath {
     kSamples,  ///< through `samples`, linearly between them, held at the last
   };
   Shape shape = Shape::kPress;
-  Vec3 a = Vec3::Zero();
-  Vec3 b = Vec3::Zero();
-  Vec3 axis = Vec3::UnitY();
-  Real radius = 0;
-  Real period = 1;                    ///< s, > 0
+  Eigen::Vector3d a = Eigen::Vector3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitY();
+  double radius = 0;
+  double period = 1;                  ///< s, > 0
   std::uint32_t buttons = 0;          ///< held throughout (all shapes but kSamples)
   std::vector<DeviceSample> samples;  ///< kSamples: increasing times, at least one
 
   /// The device at `t` seconds after the path started (t < 0: where it starts).
-  DeviceSample at(Real t) const;
+  DeviceSample at(double t) const;
 };
 
 }  // namespace felt
