@@ -6,7 +6,7 @@
 #include <optional>
 #include <utility>
 
-#include "core/mesh_topology.hpp"
+#include "core/geometry/mesh_topology.hpp"
 #include "runtime/haptic_frame.hpp"
 #include "runtime/reaction_accumulator.hpp"
 #include "runtime/scripted_devices.hpp"

@@ -8,8 +8,8 @@
 #include <memory>
 #include <vector>
 
-#include "core/haptic_surface.hpp"
-#include "core/triangle_query.hpp"
+#include "core/collision/triangle_query.hpp"
+#include "core/haptics/haptic_surface.hpp"
 #include "runtime/snapshot.hpp"
 
 namespace felt {

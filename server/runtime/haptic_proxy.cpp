@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "core/aabb.hpp"
-#include "core/sphere_contact.hpp"
+#include "core/collision/sphere_contact.hpp"
+#include "core/math/aabb.hpp"
 
 namespace felt {
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "core/god_object.hpp"
+#include "core/haptics/god_object.hpp"
 #include "runtime/haptic_frame.hpp"
 #include "runtime/reaction_accumulator.hpp"
 

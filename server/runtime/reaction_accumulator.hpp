@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/world.hpp"
+#include "core/world/world.hpp"
 
 namespace felt {
 

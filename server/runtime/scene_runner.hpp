@@ -17,7 +17,7 @@
 #include <variant>
 #include <vector>
 
-#include "core/world_state.hpp"
+#include "core/world/world_state.hpp"
 #include "runtime/body_catalog.hpp"
 #include "runtime/command_queue.hpp"
 #include "runtime/haptic_frame.hpp"

@@ -1,6 +1,6 @@
 #include "runtime/snapshot.hpp"
 
-#include "core/surface_normals.hpp"
+#include "core/geometry/surface_normals.hpp"
 
 namespace felt {
 namespace {

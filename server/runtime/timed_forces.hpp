@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/world.hpp"
+#include "core/world/world.hpp"
 
 namespace felt {
 

@@ -7,7 +7,7 @@
 #include <istream>
 #include <string>
 
-#include "core/triangle_mesh.hpp"
+#include "core/geometry/triangle_mesh.hpp"
 
 namespace felt {
 

@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/triangle_mesh.hpp"
+#include "core/geometry/triangle_mesh.hpp"
 #include "scene/scene_error.hpp"
 
 namespace felt::scene_json {

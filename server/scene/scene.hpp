@@ -4,10 +4,10 @@
 #include <utility>
 #include <vector>
 
+#include "core/collision/triangle_query.hpp"
+#include "core/haptics/proxy_settings.hpp"
+#include "core/world/world.hpp"
 #include "device/device_path.hpp"
-#include "core/proxy_settings.hpp"
-#include "core/triangle_query.hpp"
-#include "core/world.hpp"
 
 namespace felt {
 

@@ -9,8 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/cloth_grid.hpp"
-#include "core/mesh_cloth.hpp"
+#include "core/cloth/cloth_grid.hpp"
+#include "core/cloth/mesh_cloth.hpp"
 #include "scene/haptics_reader.hpp"
 #include "scene/obj_reader.hpp"
 #include "scene/object_reader.hpp"

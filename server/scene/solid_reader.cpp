@@ -5,9 +5,9 @@
 #include <optional>
 #include <utility>
 
-#include "core/procedural_surfaces.hpp"
-#include "core/tet_lattice.hpp"
-#include "core/voxel_lattice.hpp"
+#include "core/geometry/procedural_surfaces.hpp"
+#include "core/solids/tet_lattice.hpp"
+#include "core/solids/voxel_lattice.hpp"
 #include "scene/obj_reader.hpp"
 #include "scene/tetgen_reader.hpp"
 

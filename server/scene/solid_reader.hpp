@@ -4,8 +4,8 @@
 #include <cstddef>
 #include <filesystem>
 
-#include "core/solid_body.hpp"
-#include "core/solid_system.hpp"
+#include "core/solids/solid_body.hpp"
+#include "core/solids/solid_system.hpp"
 #include "scene/object_reader.hpp"
 
 namespace felt::scene_json {

@@ -9,7 +9,7 @@
 #include <istream>
 #include <string>
 
-#include "core/tet_mesh.hpp"
+#include "core/geometry/tet_mesh.hpp"
 
 namespace felt {
 

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <memory>
 
-#include "core/cloth_grid.hpp"
-#include "core/world.hpp"
+#include "core/cloth/cloth_grid.hpp"
+#include "core/world/world.hpp"
 
 namespace felt::bench {
 

@@ -21,9 +21,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/god_object.hpp"
-#include "core/surface_normals.hpp"
-#include "core/triangle_query.hpp"
+#include "core/collision/triangle_query.hpp"
+#include "core/geometry/surface_normals.hpp"
+#include "core/haptics/god_object.hpp"
 
 namespace felt {
 namespace {

@@ -30,11 +30,11 @@
 #include <utility>
 #include <vector>
 
-#include "core/god_object.hpp"
+#include "core/collision/triangle_query.hpp"
+#include "core/geometry/surface_normals.hpp"
+#include "core/haptics/god_object.hpp"
+#include "core/world/world.hpp"
 #include "device/haptic_recording.hpp"
-#include "core/surface_normals.hpp"
-#include "core/triangle_query.hpp"
-#include "core/world.hpp"
 #include "falling_cloth.hpp"
 #include "study_output.hpp"
 

@@ -36,8 +36,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/cloth_grid.hpp"
-#include "core/world.hpp"
+#include "core/cloth/cloth_grid.hpp"
+#include "core/world/world.hpp"
 #include "study_output.hpp"
 
 namespace felt {

@@ -10,9 +10,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include "core/corotated_fem.hpp"
-#include "core/polar_decomposition.hpp"
-#include "core/tet_lattice.hpp"
+#include "core/math/polar_decomposition.hpp"
+#include "core/solids/corotated_fem.hpp"
+#include "core/solids/tet_lattice.hpp"
 
 namespace felt {
 namespace {

@@ -41,9 +41,9 @@
 #include <string_view>
 #include <vector>
 
-#include "core/solid_collider_contact.hpp"
-#include "core/solid_system.hpp"
-#include "core/tet_lattice.hpp"
+#include "core/solids/solid_collider_contact.hpp"
+#include "core/solids/solid_system.hpp"
+#include "core/solids/tet_lattice.hpp"
 #include "study_output.hpp"
 
 namespace felt {

@@ -24,10 +24,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/triangle_bvh.hpp"
-#include "core/triangle_hash.hpp"
-#include "core/triangle_query.hpp"
-#include "core/world.hpp"
+#include "core/collision/triangle_bvh.hpp"
+#include "core/collision/triangle_hash.hpp"
+#include "core/collision/triangle_query.hpp"
+#include "core/world/world.hpp"
 #include "falling_cloth.hpp"
 
 namespace felt {

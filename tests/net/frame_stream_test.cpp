@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/cloth_grid.hpp"
+#include "core/cloth/cloth_grid.hpp"
 #include "frame_assembler.hpp"
 
 namespace felt::net {

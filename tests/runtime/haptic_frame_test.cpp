@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/god_object.hpp"
-#include "core/surface_normals.hpp"
+#include "core/geometry/surface_normals.hpp"
+#include "core/haptics/god_object.hpp"
 #include "runtime/haptic_frame.hpp"
 #include "runtime/haptic_proxy.hpp"
 #include "runtime/reaction_accumulator.hpp"

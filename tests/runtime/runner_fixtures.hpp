@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/cloth_grid.hpp"
+#include "core/cloth/cloth_grid.hpp"
 #include "runtime/scene_runner.hpp"
 
 namespace felt {

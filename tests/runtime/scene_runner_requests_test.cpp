@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/state_hash.hpp"
+#include "core/world/state_hash.hpp"
 #include "runner_fixtures.hpp"
 
 namespace felt {

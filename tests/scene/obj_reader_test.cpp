@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/mesh_topology.hpp"
+#include "core/geometry/mesh_topology.hpp"
 
 namespace felt {
 namespace {

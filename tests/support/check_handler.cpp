@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/check.hpp"
+#include "core/math/check.hpp"
 
 namespace {
 

@@ -1,0 +1,25 @@
+#include "core/integrate/explicit_integrators.hpp"
+
+namespace felt {
+
+void ExplicitEuler::step(const DynamicSystem& system, ParticleState& state, Real t, Real h) {
+  force_.resize(state.size());
+  system.compute_forces(state.x, state.v, t, force_);
+  const auto inv_mass = system.inv_mass();
+  for (std::size_t p = 0; p < state.size(); ++p) {
+    state.x[p] += h * state.v[p];
+    state.v[p] += h * inv_mass[p] * force_[p];
+  }
+}
+
+void SymplecticEuler::step(const DynamicSystem& system, ParticleState& state, Real t, Real h) {
+  force_.resize(state.size());
+  system.compute_forces(state.x, state.v, t, force_);
+  const auto inv_mass = system.inv_mass();
+  for (std::size_t p = 0; p < state.size(); ++p) {
+    state.v[p] += h * inv_mass[p] * force_[p];
+    state.x[p] += h * state.v[p];
+  }
+}
+
+}  // namespace felt

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "core/integrate/dynamic_system.hpp"
+#include "core/integrate/particle_state.hpp"
+
+namespace felt {
+
+/// Advances a DynamicSystem by one time step. An instance belongs to one body and keeps its
+/// scratch buffers between steps, so stepping allocates nothing once sized.
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+
+  /// The name a scene selects it by.
+  virtual std::string_view name() const = 0;
+
+  /// Advances `state` from time t to t + h.
+  virtual void step(const DynamicSystem& system, ParticleState& state, Real t, Real h) = 0;
+
+  /// Forgets history kept between steps (position Verlet's previous positions, ...); called
+  /// when the state was changed from outside, e.g. rolled back or teleported.
+  virtual void reset() {}
+};
+
+/// The integrator called `name`, or nullptr when there is none.
+std::unique_ptr<Integrator> make_integrator(std::string_view name);
+
+/// Every name make_integrator accepts.
+std::vector<std::string_view> integrator_names();
+
+/// What an integrator asks of a DynamicSystem beyond its masses and forces.
+enum class IntegratorNeeds : std::uint8_t {
+  kForces,       ///< nothing more: the explicit and symplectic schemes
+  kJacobian,     ///< compute_jacobian (implicit Euler)
+  kLinearPairs,  ///< linear_force_pairs for its implicit part (IMEX, Desbrun, Kang)
+};
+
+/// What the integrator called `name` needs, or nothing for an unknown name.
+std::optional<IntegratorNeeds> integrator_needs(std::string_view name);
+
+}  // namespace felt

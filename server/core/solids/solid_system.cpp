@@ -1,0 +1,160 @@
+#include "core/solids/solid_system.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/math/check.hpp"
+#include "core/solids/solid_collider_contact.hpp"
+
+namespace felt {
+namespace {
+
+constexpr int kMaxSubstepDoublings = 6;
+// A failing step's retries take at most this many substeps in all, or kRescueFactor times the
+// substeps of the first attempt when that is more: a step that cannot be rescued then costs a
+// few normal steps, not seconds. A body that needed 445 substeps for its damping, beside two
+// coincident rings no substep could save, took 57,000 substeps (10 s) a step to fail.
+constexpr int kMinRescueSubsteps = 512;
+constexpr int kRescueFactor = 4;
+
+// runs stage() and adds the seconds it took to `seconds`
+template <class Stage>
+void timed(Real& seconds, Stage&& stage) {
+  const auto start = std::chrono::steady_clock::now();
+  stage();
+  seconds += std::chrono::duration<Real>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+SolidSystem::SolidSystem(SolidStepSettings settings) {
+  set_settings(settings);
+}
+
+std::uint32_t SolidSystem::add_body(SolidBody body) {
+  bodies_.push_back(std::move(body));
+  // thesis 2 §2.2: the grid cell is the mean edge length
+  detector_.set_cell_size(mean_rest_edge_length(bodies_));
+  return static_cast<std::uint32_t>(bodies_.size() - 1);
+}
+
+void SolidSystem::remove_body(std::uint32_t index) {
+  FELT_CHECK(index < bodies_.size());
+  bodies_.erase(bodies_.begin() + index);
+  detector_ = SolidCollisionDetector();
+  penetration_ = PenetrationDepthEstimator();
+  contact_surface_ = ContactSurface();
+  collisions_ = CollisionSet();
+  contacts_.clear();
+  saved_.clear();
+  if (!bodies_.empty()) detector_.set_cell_size(mean_rest_edge_length(bodies_));
+}
+
+void SolidSystem::set_settings(const SolidStepSettings& settings) {
+  FELT_CHECK(settings.max_step > 0);
+  FELT_CHECK(settings.contact_iterations >= 0);
+  FELT_CHECK(settings.min_depth >= 0);
+  FELT_CHECK(settings.max_speed > 0);
+  settings_ = settings;
+}
+
+const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
+                                        std::span<const Collider> colliders,
+                                        const std::function<void()>& yield_point) {
+  FELT_CHECK(h > 0);
+  stats_ = SolidStepStats{};
+  if (bodies_.empty()) return stats_;
+  Real longest = settings_.max_step;
+  for (const SolidBody& body : bodies_) longest = std::min(longest, body.stable_time_step());
+  // the tolerance keeps a step of exactly k·max_step from rounding up to k + 1 substeps
+  int substeps = std::max(1, static_cast<int>(std::ceil(h / longest - 1e-9)));
+
+  saved_.resize(bodies_.size());
+  for (std::size_t b = 0; b < bodies_.size(); ++b) bodies_[b].save_step_state(saved_[b]);
+  bool ok = attempt(h, substeps, gravity, colliders, yield_point);
+  const int rescue_budget = std::max(kMinRescueSubsteps, kRescueFactor * substeps);
+  int rescue_substeps = 0;
+  for (int doubling = 0;
+       !ok && doubling < kMaxSubstepDoublings && rescue_substeps + 2 * substeps <= rescue_budget;
+       ++doubling) {
+    restore();
+    substeps *= 2;
+    rescue_substeps += substeps;
+    stats_.rescued = true;
+    ok = attempt(h, substeps, gravity, colliders, yield_point);
+  }
+  if (!ok) {
+    restore();
+    for (SolidBody& body : bodies_) {
+      body.previous_positions() = body.positions();
+      for (Vec3& v : body.velocities()) v.setZero();
+    }
+    stats_.rescued = false;
+    stats_.unrecoverable = true;
+  }
+  stats_.substeps = substeps;
+  for (SolidBody& body : bodies_) body.clear_external_forces();
+  return stats_;
+}
+
+bool SolidSystem::attempt(Real h, int substeps, const Vec3& gravity,
+                          std::span<const Collider> colliders,
+                          const std::function<void()>& yield_point) {
+  const Real substep_length = h / substeps;
+  for (int s = 0; s < substeps; ++s) {
+    timed(stats_.times.integration, [&] {
+      for (SolidBody& body : bodies_) body.advance(substep_length, gravity);
+    });
+    // a non-finite node must not reach the spatial hash
+    if (!healthy(false)) return false;
+    if (yield_point) yield_point();
+    substep(substep_length, gravity, colliders);
+    if (!healthy(true)) return false;
+    if (yield_point) yield_point();
+  }
+  return true;
+}
+
+void SolidSystem::substep(Real h, const Vec3& gravity, std::span<const Collider> colliders) {
+  timed(stats_.times.detection, [&] { detector_.detect(bodies_, collisions_); });
+  timed(stats_.times.triangles, [&] { detector_.collect_triangles(bodies_, collisions_); });
+  timed(stats_.times.penetration,
+        [&] { penetration_.compute(bodies_, collisions_, settings_.min_depth, contacts_); });
+  timed(stats_.times.resolution, [&] {
+    contact_surface_.resolve(bodies_, contacts_, settings_.contact_iterations, settings_.friction,
+                             h, gravity);
+  });
+  timed(stats_.times.colliders, [&] {
+    for (SolidBody& body : bodies_) resolve_collider_contacts(colliders, body);
+  });
+  timed(stats_.times.finish, [&] {
+    for (SolidBody& body : bodies_) body.finish_step(h);
+  });
+  stats_.colliding_nodes = collisions_.nodes.size();
+  stats_.colliding_triangles = 0;
+  for (const std::vector<std::uint32_t>& triangles : collisions_.triangles) {
+    stats_.colliding_triangles += triangles.size();
+  }
+}
+
+bool SolidSystem::healthy(bool check_speed) const {
+  const Real max_speed_sq = settings_.max_speed * settings_.max_speed;
+  for (const SolidBody& body : bodies_) {
+    for (const Vec3& x : body.positions()) {
+      if (!x.allFinite()) return false;
+    }
+    if (!check_speed) continue;
+    for (const Vec3& v : body.velocities()) {
+      // NaN fails the comparison and is caught too
+      if (!(v.squaredNorm() <= max_speed_sq)) return false;
+    }
+  }
+  return true;
+}
+
+void SolidSystem::restore() {
+  for (std::size_t b = 0; b < bodies_.size(); ++b) bodies_[b].restore_step_state(saved_[b]);
+}
+
+}  // namespace felt

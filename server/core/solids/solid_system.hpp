@@ -1,0 +1,93 @@
+#pragma once
+// All the soft solids of a world and the per-step pipeline that moves them and resolves their
+// contacts (thesis 2 §4.1, in the order of Table 7.4): internal forces, integration, collision
+// detection, triangle collection, penetration vectors, contact resolution.
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "core/collision/collider.hpp"
+#include "core/solids/contact_surface.hpp"
+#include "core/solids/penetration_depth.hpp"
+#include "core/solids/solid_body.hpp"
+#include "core/solids/solid_collision_detection.hpp"
+
+namespace felt {
+
+struct SolidStepSettings {
+  Real max_step = 0.015;       ///< s, the thesis's cap on the adaptive step
+  int contact_iterations = 3;  ///< pressure comparisons after the first half step (§3.3 h)
+  Real min_depth = 1e-6;       ///< m; shallower penetration depths are taken as zero (§3.3 e)
+  SolidFriction friction = SolidFriction::kRelativeCoulomb;  ///< between bodies
+  /// m/s; a node faster than this after a step is taken as an exploding state
+  Real max_speed = 100;
+};
+
+/// Seconds spent in each stage during the last step, summed over its substeps and any redone
+/// attempts (Table 7.4).
+struct SolidStageTimes {
+  Real integration = 0;  ///< internal forces and Verlet, one call (SolidBody::advance)
+  Real detection = 0, triangles = 0, penetration = 0, resolution = 0;
+  Real colliders = 0;  ///< static colliders
+  Real finish = 0;     ///< velocities from the positions (Table 7.4 FI)
+};
+
+struct SolidStepStats {
+  int substeps = 0;
+  std::size_t colliding_nodes = 0;      ///< in the last substep (Table 7.3 PKU)
+  std::size_t colliding_triangles = 0;  ///< in the last substep (Table 7.3 PKT)
+  bool rescued = false;        ///< a substep left a non-finite or exploding state and was redone
+  bool unrecoverable = false;  ///< redoing did not help; the bodies were rolled back and stopped
+  SolidStageTimes times;
+};
+
+/// The soft solids of a world, stepped together because they collide with each other.
+class SolidSystem {
+ public:
+  explicit SolidSystem(SolidStepSettings settings = {});
+
+  /// Adds a body and returns its index.
+  std::uint32_t add_body(SolidBody body);
+  /// Removes the body at `index`; the later ones move down by one. The contact caches start
+  /// over, as they hold positions in the list of bodies.
+  void remove_body(std::uint32_t index);
+  std::vector<SolidBody>& bodies() { return bodies_; }
+  const std::vector<SolidBody>& bodies() const { return bodies_; }
+
+  const SolidStepSettings& settings() const { return settings_; }
+  void set_settings(const SolidStepSettings& settings);
+
+  /// Advances every solid by h in equal substeps no longer than max_step and every body's
+  /// stable_time_step(). A step that leaves a non-finite node or one faster than max_speed is
+  /// undone and redone with twice the substeps, up to 6 times and within a budget of
+  /// substeps (solid_system.cpp); if none works, the bodies are
+  /// put back where they were, at rest. External forces are cleared afterwards. `yield_point`,
+  /// if given, is called after each substep's integration and after its contacts (as in
+  /// World::step).
+  const SolidStepStats& step(Real h, const Vec3& gravity, std::span<const Collider> colliders,
+                             const std::function<void()>& yield_point = {});
+  const SolidStepStats& last_stats() const { return stats_; }
+
+ private:
+  /// Runs `substeps` substeps of length h; false as soon as the state is not healthy.
+  bool attempt(Real h, int substeps, const Vec3& gravity, std::span<const Collider> colliders,
+               const std::function<void()>& yield_point);
+  void substep(Real h, const Vec3& gravity, std::span<const Collider> colliders);
+  /// Every position finite and, when `check_speed`, every velocity under max_speed.
+  bool healthy(bool check_speed) const;
+  void restore();
+
+  SolidStepSettings settings_;
+  std::vector<SolidBody> bodies_;
+  SolidCollisionDetector detector_;
+  PenetrationDepthEstimator penetration_;
+  ContactSurface contact_surface_;
+  CollisionSet collisions_;
+  std::vector<PenetrationContact> contacts_;
+  std::vector<SolidBody::StepState> saved_;  ///< per body, the state before the step
+  SolidStepStats stats_;
+};
+
+}  // namespace felt
