@@ -12,7 +12,8 @@ namespace felt {
 struct SceneEvent {
   enum class Kind : std::uint8_t {
     /// steps in which some body could not be rescued: it was rolled back to where it was before
-    /// the step and brought to rest (core/world.hpp). Coalesced, so an exploding scene reports
+    /// the step and brought to rest (core/world/world.hpp). Coalesced, so an exploding scene
+    /// reports
     /// at most twice a second rather than every step.
     kUnrecoverableStep,
     /// steps some body took only with substeps after its step failed; coalesced the same way
