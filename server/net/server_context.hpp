@@ -9,9 +9,9 @@
 
 #include <boost/asio/thread_pool.hpp>
 
-#include "scheduling/idle_core_spinners.hpp"
 #include "runtime/scene_registry.hpp"
 #include "scene/scene_directory.hpp"
+#include "scheduling/idle_core_spinners.hpp"
 
 namespace felt::net {
 
