@@ -26,11 +26,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-Vec3 vec(const std::vector<double>& v) {
-  return Vec3(v[0], v[1], v[2]);
+Eigen::Vector3d vec(const std::vector<double>& v) {
+  return {v[0], v[1], v[2]};
 }
-Vec3 vec(const v1::Vec3& v) {
-  return Vec3(v.x(), v.y(), v.z());
+Eigen::Vector3d vec(const v1::Vec3& v) {
+  return {v.x(), v.y(), v.z()};
 }
 
 /// One update the emulator sent and what came back for it.
