@@ -3,15 +3,10 @@
 #include <pthread.h>
 
 #include <array>
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <thread>
 
 #include <gtest/gtest.h>
-
-#include "runner_fixtures.hpp"
-#include "runtime/scene_runner.hpp"
 
 namespace felt {
 namespace {
@@ -30,20 +25,6 @@ TEST(ThreadName, ANameIsCutToTheKernelsFifteenCharacters) {
   EXPECT_EQ(name_of(thread.native_handle()), "felt-net-1");
   ASSERT_TRUE(name_thread(thread.native_handle(), "felt-a-name-longer-than-fifteen"));
   EXPECT_EQ(name_of(thread.native_handle()), "felt-a-name-lon");
-}
-
-TEST(ThreadName, AScenesPhysicsThreadIsNamedForATrace) {
-  SceneRunner runner(flat_cloth_scene());
-  runner.start();
-  bool found = false;
-  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
-    std::ifstream comm(task.path() / "comm");
-    std::string name;
-    std::getline(comm, name);
-    found = found || name == "felt-physics";
-  }
-  runner.stop();
-  EXPECT_TRUE(found);
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cloth_fixtures.hpp"
+#include "core/cloth/cloth_fixtures.hpp"
 #include "core/collision/sphere_contact.hpp"
 
 namespace felt {

@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cloth_fixtures.hpp"
+#include "core/cloth/cloth_fixtures.hpp"
 #include "core/collision/sphere_sweep.hpp"
 #include "core/geometry/triangle_geometry.hpp"
 

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cloth_fixtures.hpp"
+#include "core/cloth/cloth_fixtures.hpp"
 #include "core/geometry/triangle_geometry.hpp"
 
 namespace felt {

@@ -13,7 +13,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cloth_fixtures.hpp"
+#include "core/cloth/cloth_fixtures.hpp"
 #include "core/collision/triangle_query.hpp"
 #include "core/geometry/procedural_surfaces.hpp"
 #include "core/geometry/surface_normals.hpp"

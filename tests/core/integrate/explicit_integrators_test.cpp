@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "core/integrate/explicit_integrators.hpp"
-#include "oscillator.hpp"
+#include "core/integrate/oscillator.hpp"
 
 namespace felt::test {
 namespace {

@@ -10,12 +10,12 @@
 #include <gtest/gtest.h>
 #include <Eigen/Dense>
 
-#include "cloth_fixtures.hpp"
 #include "core/cloth/cloth_body.hpp"
+#include "core/cloth/cloth_fixtures.hpp"
 #include "core/cloth/cloth_grid.hpp"
 #include "core/integrate/implicit_euler.hpp"
+#include "core/integrate/oscillator.hpp"
 #include "core/world/world.hpp"
-#include "oscillator.hpp"
 
 namespace felt::test {
 namespace {

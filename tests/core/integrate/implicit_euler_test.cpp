@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "cloth_fixtures.hpp"
 #include "core/cloth/cloth_body.hpp"
+#include "core/cloth/cloth_fixtures.hpp"
 #include "core/cloth/cloth_grid.hpp"
 #include "core/world/world.hpp"
 

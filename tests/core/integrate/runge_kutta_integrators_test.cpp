@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "oscillator.hpp"
+#include "core/integrate/oscillator.hpp"
 
 namespace felt {
 namespace {

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "oscillator.hpp"
+#include "core/integrate/oscillator.hpp"
 
 namespace felt {
 namespace {

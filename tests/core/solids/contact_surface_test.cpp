@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "solid_contact_fixtures.hpp"
+#include "core/solids/solid_contact_fixtures.hpp"
 
 namespace felt::test {
 namespace {

@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/Eigenvalues>
 
+#include "core/solids/solid_fixtures.hpp"
 #include "core/solids/solid_system.hpp"
-#include "solid_fixtures.hpp"
 
 namespace felt {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "solid_fixtures.hpp"
+#include "core/solids/solid_fixtures.hpp"
 
 namespace felt::test {
 

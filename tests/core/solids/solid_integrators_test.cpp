@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "core/solids/solid_body.hpp"
-#include "solid_fixtures.hpp"
+#include "core/solids/solid_fixtures.hpp"
 
 namespace felt {
 namespace {

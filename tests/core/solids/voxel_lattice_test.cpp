@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "closed_surface.hpp"
+#include "core/geometry/closed_surface.hpp"
 #include "core/geometry/procedural_surfaces.hpp"
 #include "scene/obj_reader.hpp"
 

@@ -3,10 +3,10 @@
 
 #include <gtest/gtest.h>
 
-#include "cloth_fixtures.hpp"
+#include "core/cloth/cloth_fixtures.hpp"
+#include "core/solids/solid_fixtures.hpp"
 #include "core/world/state_hash.hpp"
 #include "core/world/world_state.hpp"
-#include "solid_fixtures.hpp"
 
 namespace felt {
 namespace {
