@@ -47,12 +47,12 @@ TEST_F(CsvPath, ReadsSamplesWithOrWithoutButtons) {
   EXPECT_EQ(path.shape, DevicePath::Shape::kSamples);
   ASSERT_EQ(path.samples.size(), 3u);
   EXPECT_EQ(path.samples[0].time, 0);
-  EXPECT_EQ(path.samples[0].position, Vec3(0.1, 1.2, 0.05));
+  EXPECT_EQ(path.samples[0].position, Eigen::Vector3d(0.1, 1.2, 0.05));
   EXPECT_EQ(path.samples[0].buttons, 0u);
   EXPECT_EQ(path.samples[1].time, 0.5);
-  EXPECT_EQ(path.samples[1].position, Vec3(0.1, 1.2, -0.01));
+  EXPECT_EQ(path.samples[1].position, Eigen::Vector3d(0.1, 1.2, -0.01));
   EXPECT_EQ(path.samples[1].buttons, 1u);
-  EXPECT_EQ(path.samples[2].position, Vec3(0.2, 1.3, 0));
+  EXPECT_EQ(path.samples[2].position, Eigen::Vector3d(0.2, 1.3, 0));
   EXPECT_EQ(path.samples[2].buttons, 3u);
 }
 
