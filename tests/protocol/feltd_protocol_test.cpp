@@ -260,6 +260,9 @@ TEST_F(FeltdLiveClothTest, AClientFeelsSlidesAlongAndGrabsAMovingCloth) {
   };
   // press down into the sag: held on top of the cloth, pushed back up
   v1::ForceUpdate force = move({0, 1.2, 0}, {0, 0.55, 0}, 300, 0);
+  // the light cloth bounces off a finger that hits it at 2 m/s (contact comes and goes for tens
+  // of milliseconds): hold still while the bounce dies down
+  force = move({0, 0.55, 0}, {0, 0.55, 0}, 300, 0);
   ASSERT_TRUE(force.in_contact());
   EXPECT_GT(force.force().y(), 1.0);
   EXPECT_GT(force.proxy().y(), 0.55);
