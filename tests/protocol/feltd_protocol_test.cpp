@@ -413,7 +413,8 @@ TEST_F(FeltdTest, GarbageClosesOnlyThatConnection) {
 
   Client bad;
   connect(bad);
-  bad.send_raw(std::string("\x05garbage-that-is-not-protobuf\xff\xff", 34));
+  // a 5-byte frame ("garba": field 12 with wire type 7) that is not a ClientMessage
+  bad.send_raw("\x05garbage-that-is-not-protobuf\xff\xff");
   const auto reply = bad.receive(5s);
   ASSERT_TRUE(reply);
   ASSERT_TRUE(reply->has_error());

@@ -128,7 +128,8 @@ TEST(SolidSystem, AGrabSpringHoldsALightBodyAtALongStep) {
       failed = system.step(kStep, kGravity, {}).unrecoverable;
       cube.remove_anchor(7);
     }
-    return std::pair{failed, cube.positions()[top] - target};
+    // a Vec3, not the Eigen expression, which would point into `system` and `target`
+    return std::pair{failed, Vec3(cube.positions()[top] - target)};
   };
   const auto [anchor_failed, offset] = hanging(true);
   ASSERT_FALSE(anchor_failed);
