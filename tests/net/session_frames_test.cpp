@@ -8,55 +8,13 @@
 #include <gtest/gtest.h>
 
 #include "felt_client.hpp"
-#include "net/server.hpp"
+#include "net/in_process_server.hpp"
 #include "runtime/runner_fixtures.hpp"
 
 namespace felt::net {
 namespace {
 
 using namespace std::chrono_literals;
-
-/// A server in this process on a free loopback port, one network thread, serving a flat cloth
-/// that every client joins.
-class InProcessServer {
- public:
-  InProcessServer() {
-    auto runner = std::make_shared<SceneRunner>(flat_cloth_scene(), SceneAccess{0, true, true});
-    runner->start();
-    context_.default_scene = scenes_.add(std::move(runner));
-    const auto endpoint = server_.listen("127.0.0.1", 0);
-    EXPECT_TRUE(endpoint) << endpoint.error();
-    if (endpoint) port_ = endpoint->port();
-    thread_ = std::thread([this] { io_.run([] {}); });
-  }
-  // as feltd ends
-  ~InProcessServer() {
-    scenes_.stop_all();
-    server_.shutdown();
-    io_.stop();
-    thread_.join();
-    context_.loader.join();
-    context_.frame_encoder.join();
-    server_.close_all();
-    io_.run_down();
-  }
-
-  std::unique_ptr<client::Client> greeted(const std::string& name) {
-    auto client = std::make_unique<client::Client>();
-    client->connect("127.0.0.1", port_);
-    client->hello(name);
-    return client;
-  }
-  ServerContext& context() { return context_; }
-
- private:
-  SceneRegistry scenes_;
-  ServerContext context_{scenes_, SceneDirectory(FELT_SCENE_DIR), {}, "test"};
-  IoPool io_{1};
-  Server server_{io_, context_};
-  std::thread thread_;
-  std::uint16_t port_ = 0;
-};
 
 /// Keeps the frame encoder's one thread busy until destroyed: frames planned meanwhile wait.
 class EncoderHeld {
@@ -72,7 +30,7 @@ class EncoderHeld {
 };
 
 TEST(SessionFrames, HapticUpdatesAreAnsweredWhileTheEncoderIsBusy) {
-  InProcessServer server;
+  InProcessServer server(flat_cloth_scene());
   auto client = server.greeted("toucher");
   {
     EncoderHeld held(server.context());
@@ -88,7 +46,7 @@ TEST(SessionFrames, HapticUpdatesAreAnsweredWhileTheEncoderIsBusy) {
 }
 
 TEST(SessionFrames, AFrameStillBeingEncodedWhenItsSubscriptionEndsIsNeverSent) {
-  InProcessServer server;
+  InProcessServer server(flat_cloth_scene());
   auto client = server.greeted("watcher");
   {
     EncoderHeld held(server.context());
@@ -99,7 +57,7 @@ TEST(SessionFrames, AFrameStillBeingEncodedWhenItsSubscriptionEndsIsNeverSent) {
 }
 
 TEST(SessionFrames, ANewSubscriptionsFirstFrameIsItsOwnKeyFrame) {
-  InProcessServer server;
+  InProcessServer server(flat_cloth_scene());
   auto client = server.greeted("watcher");
   {
     EncoderHeld held(server.context());
