@@ -72,15 +72,19 @@ Real largest_eigenvalue(const Eigen::SparseMatrix<Real>& matrix, Real relative_t
     beta[k] = w.norm();
     scale = std::max({scale, std::abs(alpha[k]), beta[k]});
 
+    if (scale == 0) return 0;  // A q = 0 for a q that is not: A is zero
     const bool breakdown = !(beta[k] > kBreakdown * scale);
     const Eigen::Index size = k + 1;
     if (breakdown || size == max_steps || size % kStepsPerCheck == 0) {
-      // the Ritz values are the eigenvalues of the tridiagonal T = tridiag(β, α, β)
-      const Eigen::VectorXd diagonal = alpha.head(size);
-      const Eigen::VectorXd off_diagonal = beta.head(size - 1);
+      // the Ritz values are the eigenvalues of the tridiagonal T = tridiag(β, α, β), scaled to
+      // a largest entry of 1 as Eigen's compute() scales a dense matrix: its QL iteration
+      // deflates an off-diagonal against a threshold that assumes such a scale, and unscaled
+      // (α up to 5·10⁴, β down to 3·10⁻⁴, a lattice's two cells 1.4 km apart) it never converged
+      const Eigen::VectorXd diagonal = alpha.head(size) / scale;
+      const Eigen::VectorXd off_diagonal = beta.head(size - 1) / scale;
       ritz.computeFromTridiagonal(diagonal, off_diagonal, Eigen::ComputeEigenvectors);
       FELT_CHECK(ritz.info() == Eigen::Success);
-      const Real theta = ritz.eigenvalues()[size - 1];  // ascending
+      const Real theta = scale * ritz.eigenvalues()[size - 1];  // ascending
       // ‖A y − θ y‖ of the Ritz vector y = Q s is β_k |s_k|
       const Real residual = beta[k] * std::abs(ritz.eigenvectors()(size - 1, size - 1));
       if (breakdown || size == max_steps || residual <= relative_tolerance * theta) {
