@@ -1,7 +1,10 @@
 // felt bench-latency: the ProxyUpdate -> ForceUpdate round trip at haptic rate, for one or
-// several clients at once, each also streaming frames (docs/results/service.md).
+// several clients at once, each also streaming frames (docs/results/service.md). Every force
+// that comes back is checked: finite, and within its proxy's max_force.
 
 #include <atomic>
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <memory>
 #include <mutex>
@@ -20,11 +23,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// One simulated device: its connection, its loop's results and the frames it took.
+/// One simulated device: its connection, its proxy, its loop's results and the frames it took.
 struct Device {
   client::AsyncClient client;
+  std::uint32_t proxy = 0;
+  double max_force = 0;  ///< N: what the server clamps the proxy's force to
   std::mutex mutex;
   LatencySamples samples;
+  std::uint64_t bad_forces = 0;  ///< not finite, or above max_force
   std::uint64_t sent = 0;
   std::atomic<std::uint64_t> frames{0};
   std::atomic<std::uint64_t> frame_bytes{0};
@@ -45,7 +51,10 @@ int bench_latency(const Common& common, const BenchOptions& o) {
     Device* d = device.get();
     d->client.on_error([&error](const v1::Error& e) { error.keep(e); });
     d->client.on_force([d](const v1::ForceUpdate& force, std::uint64_t received_us) {
+      const v1::Vec3& f = force.force();
+      const double magnitude = std::hypot(std::hypot(f.x(), f.y()), f.z());
       std::lock_guard lock(d->mutex);
+      if (!std::isfinite(magnitude) || magnitude > d->max_force * (1 + 1e-9)) ++d->bad_forces;
       d->samples.add(static_cast<double>(force.client_time_us()),
                      1e-3 * static_cast<double>(force.server_receive_ns()),
                      1e-3 * static_cast<double>(force.server_send_ns()),
@@ -76,6 +85,13 @@ int bench_latency(const Common& common, const BenchOptions& o) {
       scene = reply.stats().scene().scene_id();
       if (scene == 0) scene = welcome.scene_id();
     }
+    // the device's own proxy, with the scene's settings: its reply says the force's limit
+    v1::ClientMessage open;
+    open.mutable_open_proxy();
+    const v1::ServerMessage opened = d->client.request(open);
+    client::check_reply(opened, v1::ServerMessage::kProxyOpened);
+    d->proxy = opened.proxy_opened().proxy_id();
+    d->max_force = opened.proxy_opened().settings().max_force();
     if (o.frame_rate > 0) {
       v1::ClientMessage subscribe;
       v1::SubscribeFrames& s = *subscribe.mutable_subscribe_frames();
@@ -100,23 +116,22 @@ int bench_latency(const Common& common, const BenchOptions& o) {
   }
 
   Progress progress("bench", o.seconds);
-  const Clock::time_point start =
-      run_paced_devices(o.clients, o.rate, static_cast<std::uint64_t>(o.seconds * o.rate),
-                        [&](int c, std::uint64_t k) {
-                          Device& d = *devices[c];
-                          if (error.any()) return false;
-                          d.client.send_proxy_update(0, {o.at[0] + 0.01 * c, o.at[1], o.at[2]});
-                          ++d.sent;
-                          if (c == 0)
-                            progress.update(static_cast<double>(k + 1) / o.rate);  // ticks done
-                          return true;
-                        });
+  const Clock::time_point start = run_paced_devices(
+      o.clients, o.rate, static_cast<std::uint64_t>(o.seconds * o.rate),
+      [&](int c, std::uint64_t k) {
+        Device& d = *devices[c];
+        if (error.any()) return false;
+        d.client.send_proxy_update(d.proxy, {o.at[0] + 0.01 * c, o.at[1], o.at[2]});
+        ++d.sent;
+        if (c == 0) progress.update(static_cast<double>(k + 1) / o.rate);  // ticks done
+        return true;
+      });
   progress.finish();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the last replies
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
 
   LatencySamples all;
-  std::uint64_t sent = 0, frames = 0, frame_bytes = 0, skipped = 0;
+  std::uint64_t sent = 0, frames = 0, frame_bytes = 0, skipped = 0, bad_forces = 0;
   std::ofstream csv;
   if (!o.csv.empty()) {
     csv.open(o.csv);
@@ -129,6 +144,7 @@ int bench_latency(const Common& common, const BenchOptions& o) {
     frames += d.frames;
     frame_bytes += d.frame_bytes;
     skipped += d.skipped;
+    bad_forces += d.bad_forces;
     all.append(d.samples);
     if (csv) d.samples.write_csv(csv, c);
   }
@@ -143,7 +159,9 @@ int bench_latency(const Common& common, const BenchOptions& o) {
        .kb_per_frame = frames ? static_cast<double>(frame_bytes) / frames / 1e3 : 0.0,
        .skipped = skipped},
       all);
-  return answered == sent ? 0 : 1;
+  std::printf("forces: %zu answered, %llu not finite or above the proxy's max_force (%g N)\n",
+              answered, static_cast<unsigned long long>(bad_forces), devices[0]->max_force);
+  return answered == sent && bad_forces == 0 ? 0 : 1;
 }
 
 }  // namespace felt::cli

@@ -200,6 +200,11 @@ TEST_F(FeltCliTest, BenchLatencyPrintsARowOfRoundTrips) {
   EXPECT_LE(row[3], row[4]);
   EXPECT_LE(row[4], row[5]);
   EXPECT_LE(row[5], row[6]);
+  // every force checked against the proxy's limit (scenes/default.json: 8 N)
+  EXPECT_NE(
+      r.out.find("\nforces: 120 answered, 0 not finite or above the proxy's max_force (8 N)\n"),
+      std::string::npos)
+      << r.out;
 }
 
 /// feltd with no scene of its own: a client is in no scene until it loads or joins one.
