@@ -11,12 +11,11 @@ run, which stays near zero when the bound holds.
 """
 
 import os
-import re
-import subprocess
 import sys
 import threading
 import time
 
+from feltd_process import rss_kib, start_feltd
 from felt.v1 import envelope_pb2, frames_pb2, stats_pb2
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "client_python"))
@@ -24,28 +23,6 @@ from felt_client import Client, encode_frame  # noqa: E402
 
 REPLY_BACKLOG = 8 << 20  # feltd's --max-reply-backlog default
 SAMPLE_SECONDS = 0.05  # a flooding client fills its backlog and is dropped within a second
-
-
-def start_feltd(feltd, scene_dir):
-    process = subprocess.Popen(
-        [feltd, "serve", "--listen", "127.0.0.1:0", "--scene-dir", scene_dir, "--scene",
-         os.path.join(scene_dir, "service_bench.json")],
-        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    for line in process.stdout:
-        found = re.match(r"listening on .*:(\d+)$", line.strip())
-        if found:
-            # keep draining its output so that it never blocks on a full pipe
-            threading.Thread(target=lambda: [None for _ in process.stdout], daemon=True).start()
-            return process, int(found.group(1))
-    raise RuntimeError("feltd did not start")
-
-
-def rss_kib(pid):
-    with open(f"/proc/{pid}/status") as status:
-        for line in status:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1])
-    raise RuntimeError("no VmRSS")
 
 
 def subscriber(port, max_rate, deltas):
@@ -101,7 +78,7 @@ MODES = [
 
 
 def measure(feltd, scene_dir, name, misbehave, clients, seconds):
-    process, port = start_feltd(feltd, scene_dir)
+    process, port = start_feltd(feltd, scene_dir, os.path.join(scene_dir, "service_bench.json"))
     try:
         probe = Client("127.0.0.1", port)
         probe.hello("felt-memory-probe")
