@@ -14,6 +14,7 @@
 
 #include "felt_client.hpp"
 #include "feltd_process.hpp"
+#include "support/time_scale.hpp"
 
 namespace felt::test {
 
@@ -40,7 +41,11 @@ class FeltdTest : public ::testing::Test {
       EXPECT_EQ(server_->stop(SIGTERM, 5s), 0);
     }
   }
-  void connect(Client& client) { client.connect("127.0.0.1", server_->port()); }
+  /// Connects `client`, which then waits for a reply as long as a sanitized build needs.
+  void connect(Client& client) {
+    client.connect("127.0.0.1", server_->port());
+    client.set_reply_timeout(scaled(10s));
+  }
   /// A connected client that has said hello as `name`.
   std::unique_ptr<Client> greeted(const std::string& name) {
     auto client = std::make_unique<Client>();

@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "support/time_scale.hpp"
+
 extern char** environ;
 
 namespace felt::test {
@@ -36,13 +38,13 @@ FeltdProcess::FeltdProcess(const std::vector<std::string>& args, bool default_li
   if (spawned != 0) throw std::runtime_error("cannot start " FELTD_PATH);
 
   // read the first line, with a deadline
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  const auto deadline = std::chrono::steady_clock::now() + scaled(std::chrono::seconds(10));
   while (first_line_.find('\n') == std::string::npos) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     pollfd pfd{stdout_fd_, POLLIN, 0};
     if (left.count() <= 0 || poll(&pfd, 1, static_cast<int>(left.count())) <= 0) {
-      throw std::runtime_error("feltd printed no line within 10 s");
+      throw std::runtime_error("feltd printed no line in time");
     }
     char c;
     if (read(stdout_fd_, &c, 1) != 1) throw std::runtime_error("feltd exited: " + first_line_);
@@ -78,7 +80,7 @@ bool FeltdProcess::running() {
 std::optional<int> FeltdProcess::stop(int signal, std::chrono::milliseconds timeout) {
   if (pid_ <= 0) return std::nullopt;
   kill(pid_, signal);
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  const auto deadline = std::chrono::steady_clock::now() + scaled(timeout);
   while (std::chrono::steady_clock::now() < deadline) {
     int status = 0;
     if (waitpid(pid_, &status, WNOHANG) == pid_) {

@@ -25,7 +25,8 @@ class FeltdProcess {
   pid_t pid() const { return pid_; }
   const std::string& first_line() const { return first_line_; }
 
-  /// Sends `signal` and waits for the exit; the exit status, or nothing on timeout.
+  /// Sends `signal` and waits for the exit; the exit status, or nothing on timeout (scaled, as
+  /// the wait for its first line is: support/time_scale.hpp).
   std::optional<int> stop(int signal, std::chrono::milliseconds timeout);
   /// Whether the process is still running.
   bool running();

@@ -12,6 +12,7 @@
 
 #include "core/cloth/cloth_grid.hpp"
 #include "runtime/scene_runner.hpp"
+#include "support/time_scale.hpp"
 
 namespace felt {
 
@@ -43,7 +44,7 @@ inline Scene flat_cloth_scene(Vec3 gravity = Vec3::Zero()) {
 
 template <typename Predicate>
 bool wait_for(Predicate done, std::chrono::milliseconds timeout = 5s) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  const auto deadline = std::chrono::steady_clock::now() + test::scaled(timeout);
   while (!done()) {
     if (std::chrono::steady_clock::now() > deadline) return false;
     std::this_thread::sleep_for(2ms);
@@ -80,7 +81,7 @@ class Awaited {
   /// The outcome; a timeout fails the test and returns a kCancelled error.
   std::expected<T, RunnerError> get(std::chrono::milliseconds timeout = 5s) {
     auto future = promise_->get_future();
-    if (future.wait_for(timeout) != std::future_status::ready) {
+    if (future.wait_for(test::scaled(timeout)) != std::future_status::ready) {
       ADD_FAILURE() << "no completion within the timeout";
       return std::unexpected(RunnerError{RunnerError::Code::kCancelled, "timeout"});
     }

@@ -62,7 +62,7 @@ TEST(SceneRunner, TouchPushesOutOfTheClothAndDentsIt) {
   // held there for 0.3 s of the scene's clock (a loaded machine may step it slower than the
   // wall's), the reaction pushes the sheet down under the proxy
   runner.start();
-  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  const auto deadline = std::chrono::steady_clock::now() + test::scaled(20s);
   while (runner.latest()->sim_time < 0.3 && std::chrono::steady_clock::now() < deadline) {
     touch(runner, proxy, above);
     std::this_thread::sleep_for(1ms);
@@ -131,7 +131,7 @@ TEST(SceneRunner, TheServoThreadDrivesTheScenesScriptedDevices) {
   runner.start();
   // the sheet, pinned only at its corners, bounces on the finger: watch it for half a second
   double largest_push = 0, deepest = 0;
-  const auto deadline = std::chrono::steady_clock::now() + 500ms;
+  const auto deadline = std::chrono::steady_clock::now() + test::scaled(500ms);
   while (std::chrono::steady_clock::now() < deadline) {
     const auto devices = runner.device_states();
     ASSERT_EQ(devices.size(), 1u);
@@ -155,7 +155,7 @@ TEST(SceneRunner, StopsPromptly) {
   std::this_thread::sleep_for(20ms);
   const auto start = std::chrono::steady_clock::now();
   runner.stop();
-  EXPECT_LT(std::chrono::steady_clock::now() - start, 1s);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, test::scaled(1s));
 }
 
 // A cloth whose springs explicit Euler cannot integrate at any substep: its unrecoverable
