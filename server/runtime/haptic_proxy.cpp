@@ -4,6 +4,8 @@
 
 #include "core/collision/sphere_contact.hpp"
 #include "core/math/aabb.hpp"
+#include "core/math/bounds.hpp"
+#include "core/math/clamp_length.hpp"
 
 namespace felt {
 
@@ -36,10 +38,8 @@ Vec3 HapticProxy::starting_point(const HapticSurface& surface, const Vec3& devic
 
 Vec3 HapticProxy::grab_force(const HapticSurface& surface, const Vec3& device) const {
   const HapticBody& body = *surface.find(grab_->body);
-  Vec3 force = settings_.stiffness * (surface.vertex(body, grab_->vertex) - device);
-  const Real magnitude = force.norm();
-  if (magnitude > settings_.max_force) force *= settings_.max_force / magnitude;
-  return force;
+  return clamped_spring_force(settings_.stiffness, surface.vertex(body, grab_->vertex) - device,
+                              settings_.max_force);
 }
 
 Real HapticProxy::seconds_since_last(SteadyClock::time_point now) {
@@ -56,8 +56,21 @@ void HapticProxy::forget_surface_if_idle(SteadyClock::time_point now, SteadyCloc
   }
 }
 
+ProxyOutput HapticProxy::hold(ReactionAccumulator& reactions) const {
+  ProxyOutput out;
+  out.contact.proxy = out.contact.contact_point = god_ ? god_->proxy() : Vec3::Zero();
+  if (grab_) {
+    out.grabbing = true;
+    out.grabbed_body = grab_->body;
+    out.grabbed_vertex = grab_->vertex;
+  }
+  reactions.record(key_, ProxySample{});
+  return out;
+}
+
 ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec3& device,
                                 std::uint32_t buttons, ReactionAccumulator& reactions) {
+  if (!within_bounds(device)) return hold(reactions);
   if (!god_) god_.emplace(settings_, starting_point(surface, device));
 
   ProxyOutput out;
@@ -85,6 +98,7 @@ ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec
     out.grabbed_body = grab_->body;
     out.grabbed_vertex = grab_->vertex;
     out.contact.force = grab_force(surface, device);
+    if (!out.contact.force.allFinite()) return hold(reactions);  // a grabbed vertex gone bad
     sample.push =
         ProxySample::Push{grab_->body, Triangle{grab_->vertex, grab_->vertex, grab_->vertex},
                           Vec3(1, 0, 0), -out.contact.force};

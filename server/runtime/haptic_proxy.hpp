@@ -33,7 +33,8 @@ class HapticProxy {
 
   /// One update with the device at `device` and its `buttons`, against `surface` as rendered
   /// now, `dt` seconds after the previous update (0: unknown); the reaction on the touched body
-  /// goes to `reactions`.
+  /// goes to `reactions`. A device position that is not finite or beyond ±1e6 m is no reading
+  /// (GodObject::update): no force either way, a grab is kept for the next.
   ProxyOutput update(const HapticSurface& surface, Real dt, const Vec3& device,
                      std::uint32_t buttons, ReactionAccumulator& reactions);
 
@@ -55,6 +56,8 @@ class HapticProxy {
   /// so that a device already inside something feels it at once.
   Vec3 starting_point(const HapticSurface& surface, const Vec3& device) const;
   Vec3 grab_force(const HapticSurface& surface, const Vec3& device) const;
+  /// The reply to an update that is no reading: no force, nothing pushed or pulled.
+  ProxyOutput hold(ReactionAccumulator& reactions) const;
 
   std::uint64_t key_;
   ProxySettings settings_;

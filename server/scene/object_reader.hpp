@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/geometry/triangle_mesh.hpp"
+#include "core/math/bounds.hpp"
 #include "scene/scene_error.hpp"
 
 namespace felt::scene_json {
@@ -98,7 +99,8 @@ class ObjectReader {
     return at(key).get<std::string>();
   }
 
-  /// Three numbers within ±kMaxVectorComponent: a point, a size, a direction, a scale.
+  /// Three numbers within ±kMaxVectorComponent (core/math/bounds.hpp): a point, a size, a
+  /// direction, a scale.
   Vec3 vec3(std::string_view key, const Vec3& fallback) const {
     if (!has(key)) return fallback;
     const json& v = at(key);
@@ -128,10 +130,6 @@ class ObjectReader {
   /// whose squared lengths underflowed to 0 and failed an invariant of the server.
   static constexpr Real kMinLength = 1e-6;
   static constexpr Real kMaxLength = 1e6;
-  /// Far past any scene's extent (metres), velocity or acceleration; it keeps a body's particles
-  /// where doubles still tell them apart: a solid translated by 9e15 m had nodes 0.1 m apart
-  /// collapse onto each other and failed an invariant of the server.
-  static constexpr Real kMaxVectorComponent = 1e6;
 
  private:
   const json& value_;

@@ -8,6 +8,8 @@
 #include <utility>
 
 #include "core/geometry/triangle_geometry.hpp"
+#include "core/math/bounds.hpp"
+#include "core/math/clamp_length.hpp"
 
 namespace felt {
 namespace {
@@ -595,14 +597,17 @@ Vec3 GodObject::carry(const HapticSurface& surface, Vec3& before) {
   }
 }
 
-HapticContact GodObject::update(const HapticSurface& surface, const Vec3& device, Real dt) {
+HapticContact GodObject::hold() {
+  force_ = Vec3::Zero();
   HapticContact out;
-  if (!device.allFinite()) {
-    force_ = Vec3::Zero();
-    out.proxy = proxy_;
-    out.contact_point = proxy_;
-    return out;
-  }
+  out.proxy = proxy_;
+  out.contact_point = proxy_;
+  return out;
+}
+
+HapticContact GodObject::update(const HapticSurface& surface, const Vec3& device, Real dt) {
+  if (!within_bounds(device)) return hold();
+  HapticContact out;
   const Real radius = std::isfinite(settings_.radius) ? std::max(settings_.radius, Real{0}) : 0;
   forget_candidates();
   follow_bodies(surface);
@@ -675,12 +680,12 @@ HapticContact GodObject::update(const HapticSurface& surface, const Vec3& device
       anchor = Nearest{i, point, distance};
     }
   }
-  anchor_.reset();
+  std::optional<Anchor> anchored;
   if (anchor) {
     const std::size_t i = anchor->candidate;
     if (const std::optional<Placement> placement = place(candidate_now_[i], rest)) {
-      anchor_ = Anchor{surface.bodies[candidate_body_[i]].body_id, candidate_body_[i],
-                       candidate_triangle_[i], placement->barycentric, placement->offset};
+      anchored = Anchor{surface.bodies[candidate_body_[i]].body_id, candidate_body_[i],
+                        candidate_triangle_[i], placement->barycentric, placement->offset};
     }
   }
 
@@ -730,29 +735,25 @@ HapticContact GodObject::update(const HapticSurface& surface, const Vec3& device
   }
 
   // the device's limits
-  const Real force_norm = force.norm();
-  if (force_norm > settings_.max_force) force *= settings_.max_force / force_norm;
+  force = clamp_length(force, settings_.max_force);
   const Vec3 change = force - force_;
-  const Real change_norm = change.norm();
-  if (settings_.max_force_change > 0 && change_norm > settings_.max_force_change) {
-    force = force_ + change * (settings_.max_force_change / change_norm);
+  if (settings_.max_force_change > 0 && change.norm() > settings_.max_force_change) {
+    force = force_ + clamp_length(change, settings_.max_force_change);
   }
-  if (!force.allFinite() || !rest.allFinite() || !proxy.allFinite()) {
-    force = Vec3::Zero();  // nothing non-finite leaves: keep the proxy where it was
-    rest = rest_;
-    proxy = proxy_;
-  }
+  out.force = force;
+  out.proxy = proxy;
+  out.slipping = slipping;
+  // nothing non-finite leaves (a surface too large for doubles): keep the proxy where it was
+  if (!out.finite() || !rest.allFinite()) return hold();
 
   rest_ = rest;
   proxy_ = proxy;
+  anchor_ = anchored;
   previous_ = surface;  // its storage too: kept until the next update
   in_contact_ = in_contact;
   slipping_ = slipping;
   previous_offset_ = offset;
   force_ = force;
-  out.force = force;
-  out.proxy = proxy;
-  out.slipping = slipping;
   return out;
 }
 

@@ -54,6 +54,12 @@ struct HapticContact {
   Vec3 barycentric = Vec3::Zero();  ///< of contact_point in the touched triangle
   int constraints = 0;    ///< active constraint planes: 0 free, 1 face, 2 crease, 3 corner
   bool slipping = false;  ///< friction state: false = sticking (or free)
+
+  /// Whether every vector is finite: what an update returns always is.
+  bool finite() const {
+    return force.allFinite() && proxy.allFinite() && contact_point.allFinite() &&
+           normal.allFinite() && barycentric.allFinite();
+  }
 };
 
 class GodObject {
@@ -61,9 +67,11 @@ class GodObject {
   GodObject(const ProxySettings& settings, const Vec3& device);
 
   /// Moves the proxy toward `device` against `surface` as rendered now, `dt` seconds after the
-  /// previous update (dt ≤ 0: unknown, no damping). Never returns a non-finite force: a
-  /// non-finite device position keeps the proxy where it is and returns zero force; triangles
-  /// with a non-finite corner are not there.
+  /// previous update (dt ≤ 0: unknown, no damping). Never returns a non-finite value: a device
+  /// position that is not finite or lies beyond ±kMaxVectorComponent (1e6 m,
+  /// core/math/bounds.hpp) is no reading, and neither is an update whose result is not
+  /// finite: the proxy stays where it is, free, with zero force. Triangles with a non-finite
+  /// corner are not there.
   ///
   /// Force: stiffness · (proxy − device), or with force shading (one constraint plane) the
   /// spring to Ruspini's sub-proxy on the plane through the proxy whose normal is the vertex
@@ -103,6 +111,8 @@ class GodObject {
   /// Matches the bodies of `surface` with those of the previous update's surface and bounds
   /// how far each vertex moved since (then_, travel_, margin_).
   void follow_bodies(const HapticSurface& surface);
+  /// The reply to an update that is no reading: zero force, the proxy where it was, free.
+  HapticContact hold();
   /// A triangle of body `b` of `surface` as the previous update rendered it, if it had the body.
   std::optional<TriangleCorners> previous_corners(std::uint32_t b, std::uint32_t triangle) const;
   /// Leg 1 (see above): where the proxy is carried to against the current state; `before` is

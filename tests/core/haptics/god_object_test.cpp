@@ -630,6 +630,55 @@ TEST(GodObjectBadInput, ANonFiniteDeviceGivesZeroForceAndKeepsTheProxy) {
   expect_vec_near(c.proxy, before, 1e-12);
 }
 
+// Issue 31: a device at 1e308 after a contact came back in contact with a NaN contact point,
+// and one sent to DBL_MAX and back stayed there, in contact with zero force. Beyond the bound
+// on every vector from outside (±1e6 m) a device position is no reading, as a NaN is.
+TEST(GodObjectBadInput, ADeviceBeyondTheBoundIsNoReadingAndTheProxyCarriesOn) {
+  const Grid g = grid(2, 2, 0);
+  const Sheet plane(0, g.positions, g.triangles);
+  const HapticSurface surface = surface_of({&plane});
+  GodObject proxy(plain_settings(0.01), Vec3(0, 0, 0.05));
+  const HapticContact pressed = stroke(proxy, surface, Vec3(0, 0, 0.05), Vec3(0.1, 0, 0), 20);
+  ASSERT_TRUE(pressed.in_contact);
+  const Real huge = std::numeric_limits<Real>::max();
+  for (const Vec3& far : {Vec3(1e308, 0, 0), Vec3(huge, huge, huge), Vec3(0.1, 0, -1e200),
+                          Vec3(-huge, 0, huge), Vec3(0, std::nextafter(1e6, 2e6), 0)}) {
+    const HapticContact c = proxy.update(surface, far, 1e-3);
+    EXPECT_FALSE(c.in_contact) << far.transpose();
+    expect_vec_near(c.force, Vec3::Zero(), 0);
+    expect_vec_near(c.proxy, pressed.proxy, 0);
+    expect_vec_near(c.contact_point, pressed.proxy, 0);
+    expect_vec_near(c.normal, Vec3::Zero(), 0);
+    expect_vec_near(proxy.proxy(), pressed.proxy, 0);
+  }
+  // back from every one of them: pressed as before, on the same spot
+  const HapticContact back = proxy.update(surface, Vec3(0.1, 0, 0), 1e-3);
+  ASSERT_TRUE(back.in_contact);
+  expect_vec_near(back.proxy, pressed.proxy, 1e-12);
+  expect_vec_near(back.force, pressed.force, 1e-9);
+  // the bound itself is a reading: 1e6 m away is free space
+  const HapticContact far = proxy.update(surface, Vec3(0, 0, 1e6), 1e-3);
+  EXPECT_FALSE(far.in_contact);
+  expect_vec_near(far.proxy, Vec3(0, 0, 1e6), 0);
+}
+
+// Whatever leaves is finite, or the update is no reading: here a square 2e300 m across, whose
+// squared sizes overflow, pressed from above.
+TEST(GodObjectBadInput, ASurfaceTooLargeForDoublesGivesNoNonFiniteOutput) {
+  const Grid g = squares({{Vec3(-1e300, -1e300, 0), Vec3(1e300, -1e300, 0), Vec3(1e300, 1e300, 0),
+                           Vec3(-1e300, 1e300, 0)}});
+  const Sheet plane(0, g.positions, g.triangles);
+  const HapticSurface surface = surface_of({&plane});
+  GodObject proxy(plain_settings(0.01), Vec3(0, 0, 0.05));
+  for (int i = 1; i <= 40; ++i) {
+    const HapticContact c = proxy.update(surface, Vec3(0.001 * i, 0, 0.05 - 0.002 * i), 1e-3);
+    ASSERT_TRUE(c.force.allFinite() && c.proxy.allFinite() && c.contact_point.allFinite() &&
+                c.normal.allFinite() && c.barycentric.allFinite())
+        << i;
+    EXPECT_LE(c.force.norm(), 1e6) << i;
+  }
+}
+
 TEST(GodObjectBadInput, ANonFiniteVertexIsSkippedNeverPropagated) {
   Grid g = grid(5, 1, 0);
   g.positions[12] = Vec3(std::nan(""), 0, 0);  // the centre vertex
