@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/math/bounds.hpp"
 #include "net/requests.hpp"
 
 namespace felt::net {
@@ -58,6 +59,10 @@ std::expected<ProxySettings, std::string> merge(const v1::ProxySettings& setting
   return out;
 }
 
+// what the scene files' vectors are held to (core/math/bounds.hpp)
+constexpr const char* kPositionOutOfBound = "position must be three numbers within ±1e6 m";
+static_assert(kMaxVectorComponent == 1e6, "the message names the bound");
+
 std::string too_many_proxies(Session& session) {
   return "at most " + std::to_string(session.context().options.max_proxies_per_session) +
          " proxies per client (--max-proxies)";
@@ -100,8 +105,8 @@ void handle_proxy_update(Session& session, std::uint64_t id, const v1::ProxyUpda
   // the cores stay awake while a device streams, so that its next update wakes no halted core
   if (IdleCoreSpinners* spinners = session.context().idle_core_spinners) spinners->touch(now);
   const Vec3 position = to_vec3(update.position());
-  if (!update.has_position() || !position.allFinite()) {
-    session.send_error(id, v1::ERROR_CODE_BAD_REQUEST, "position must be three finite numbers");
+  if (!update.has_position() || !within_bounds(position)) {
+    session.send_error(id, v1::ERROR_CODE_BAD_REQUEST, kPositionOutOfBound);
     return;
   }
   HapticProxy* proxy = session.proxy(update.proxy_id());

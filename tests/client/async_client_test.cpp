@@ -164,7 +164,7 @@ TEST_F(AsyncClientTest, ErrorsGoToTheirHandlerOrToOnError) {
   }
   ASSERT_TRUE(errors.wait_for(2, 5s));
   EXPECT_EQ(errors.items()[0].code(), v1::ERROR_CODE_BAD_REQUEST);
-  EXPECT_EQ(errors.items()[0].message(), "position must be three finite numbers");
+  EXPECT_EQ(errors.items()[0].message(), "position must be three numbers within ±1e6 m");
   EXPECT_EQ(errors.items()[1].code(), v1::ERROR_CODE_LIMIT_EXCEEDED);
   EXPECT_EQ(errors.items()[1].message(), "at most 16 proxies per client (--max-proxies)");
   // request() throws its Error

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <thread>
 
@@ -293,6 +294,55 @@ TEST_F(FeltdLiveClothTest, AClientFeelsSlidesAlongAndGrabsAMovingCloth) {
   EXPECT_GT(height, 0.9);
   // let go
   EXPECT_FALSE(client.proxy_update(0, {0.2, 1.5, 0}, 0).grabbing());
+}
+
+// Issue 31: an update at 1e308 after a contact came back in contact with a NaN contact point, a
+// proxy sent to DBL_MAX and back stayed there, in contact with zero force, and grabbing, then
+// moving to 1e308 gave a NaN force while the scene's steps went unrecoverable until the
+// release. Positions beyond ±1e6 m, as in scene files, are refused; the proxy and its grab
+// carry on from where they were.
+TEST_F(FeltdLiveClothTest, PositionsBeyondTheBoundAreRefusedAndTheProxyCarriesOn) {
+  Client client;
+  connect(client);
+  client.hello("test");
+  using Point = std::array<double, 3>;
+  const double huge = std::numeric_limits<double>::max();
+  const std::vector<Point> beyond = {
+      {1e308, 1.2, 0.01}, {huge, huge, huge}, {0, 1.2, -1e200}, {0, std::nextafter(1e6, 2e6), 0}};
+  const Point touching = {0, 1.2, 0.01};  // 1 cm in front of the curtain, with a 2 cm proxy
+  ASSERT_TRUE(client.proxy_update(0, touching).in_contact());
+  for (const Point& far : beyond) {
+    expect_error([&] { client.proxy_update(0, far); }, v1::ERROR_CODE_BAD_REQUEST,
+                 "position must be three numbers within ±1e6 m");
+  }
+  const v1::ForceUpdate back = client.proxy_update(0, touching);
+  ASSERT_TRUE(back.in_contact());
+  EXPECT_GT(back.force().z(), 1);
+  // the bound itself is a position: free space, and back in contact from there
+  EXPECT_FALSE(client.proxy_update(0, {0, 0, 1e6}).in_contact());
+  EXPECT_TRUE(client.proxy_update(0, touching).in_contact());
+
+  v1::ForceUpdate grab = client.proxy_update(0, touching, 1);
+  ASSERT_TRUE(grab.grabbing());
+  const std::uint32_t held = grab.grabbed_vertex();
+  for (const Point& far : beyond) {
+    expect_error([&] { client.proxy_update(0, far, 1); }, v1::ERROR_CODE_BAD_REQUEST);
+  }
+  for (int i = 0; i < 100; ++i) {  // a tenth of a second of steps, held 4 cm in front
+    grab = client.proxy_update(0, {0, 1.2, 0.04}, 1);
+    std::this_thread::sleep_for(1ms);
+  }
+  ASSERT_TRUE(grab.grabbing());
+  EXPECT_EQ(grab.grabbed_vertex(), held);
+  for (const double f : {grab.force().x(), grab.force().y(), grab.force().z()}) {
+    EXPECT_TRUE(std::isfinite(f));
+  }
+  EXPECT_LE(std::hypot(grab.force().x(), grab.force().y(), grab.force().z()),
+            8 + 1e-9);  // the scene's max_force
+  for (const v1::SceneEvent& event : client.take_events()) {
+    EXPECT_NE(event.kind(), v1::EVENT_KIND_UNRECOVERABLE_STEP);
+  }
+  EXPECT_FALSE(client.proxy_update(0, touching, 0).grabbing());
 }
 
 TEST_F(FeltdTest, SoftSolidsStreamTheirFineSurfaceAndCanBeTouched) {
