@@ -4,11 +4,14 @@
 #include <cmath>
 #include <optional>
 
+#include "core/math/bounds.hpp"
+
 namespace felt {
 namespace {
 
-bool all_finite(const std::vector<Vec3>& vectors) {
-  return std::all_of(vectors.begin(), vectors.end(), [](const Vec3& v) { return v.allFinite(); });
+bool all_within_bounds(const std::vector<Vec3>& vectors) {
+  return std::all_of(vectors.begin(), vectors.end(),
+                     [](const Vec3& v) { return within_bounds(v); });
 }
 
 std::string body_name(BodyId id) {
@@ -33,10 +36,11 @@ std::optional<std::string> mismatch(const World& world, const BodyMotionState& b
            " particles, the state " + std::to_string(body.positions.size()) + " positions and " +
            std::to_string(body.velocities.size()) + " velocities";
   }
-  if (!all_finite(body.positions) || !all_finite(body.velocities) ||
-      !all_finite(body.previous_positions) || !std::isfinite(body.previous_step) ||
+  // as a scene file's vectors: a state far out published infinities in 32-bit frames
+  if (!all_within_bounds(body.positions) || !all_within_bounds(body.velocities) ||
+      !all_within_bounds(body.previous_positions) || !std::isfinite(body.previous_step) ||
       body.previous_step < 0) {
-    return body_name(body.body_id) + ": every value must be finite";
+    return body_name(body.body_id) + ": every value must be finite, every vector within ±1e6";
   }
   for (std::uint32_t p : body.pinned) {
     if (p >= particles) return body_name(body.body_id) + ": pinned particle out of range";

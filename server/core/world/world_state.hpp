@@ -29,7 +29,8 @@ struct WorldState {
 WorldState capture_state(const World& world);
 
 /// Puts `state` back into `world`: every body it names must be live with the same number of
-/// particles, and every value finite; otherwise nothing changes and the error says what is
+/// particles, every value finite and every position and velocity within ±kMaxVectorComponent
+/// (core/math/bounds.hpp); otherwise nothing changes and the error says what is
 /// wrong. Bodies it does not name keep their state. Integrators forget what they keep between
 /// steps (as after a rollback), so stateless integrators continue bit for bit.
 std::expected<void, std::string> restore_state(World& world, const WorldState& state);

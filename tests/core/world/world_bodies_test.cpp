@@ -149,6 +149,17 @@ TEST(WorldState, AStateThatDoesNotFitChangesNothing) {
   const auto nonfinite = restore_state(world, state);
   ASSERT_FALSE(nonfinite);
   EXPECT_NE(nonfinite.error().find("finite"), std::string::npos);
+  // finite but beyond the bound of every vector from outside (issue 31: frames then carried
+  // infinities)
+  state = capture_state(world);
+  state.bodies[0].positions[3] = Vec3(0, 1e300, 0);
+  EXPECT_FALSE(restore_state(world, state));
+  state = capture_state(world);
+  state.bodies[1].velocities[2] = Vec3(0, 0, -2e6);
+  EXPECT_FALSE(restore_state(world, state));
+  state = capture_state(world);
+  state.bodies[1].previous_positions[0] = Vec3(1e7, 0, 0);
+  EXPECT_FALSE(restore_state(world, state));
   state = capture_state(world);
   state.bodies[1].velocities.pop_back();
   EXPECT_FALSE(restore_state(world, state));
