@@ -13,12 +13,8 @@
 namespace felt {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using Seconds = std::chrono::duration<double>;
 
-// Lagging further than this behind the wall clock re-synchronises instead of catching up, so a
-// slow scene runs slower than real time rather than stepping in bursts.
-constexpr double kMaxLagSeconds = 0.1;
 // rescued and unrecoverable steps are reported at most this often
 constexpr double kEventIntervalSeconds = 0.5;
 // real-time factor and step time are averaged over windows this long
@@ -67,14 +63,17 @@ RunnerError error(RunnerError::Code code, std::string message) {
 
 }  // namespace
 
-SceneRunner::SceneRunner(Scene scene, SceneAccess access, SceneReloader reload, SceneLimits limits)
-    : scene_(std::move(scene)),
+SceneRunner::SceneRunner(Scene scene, SceneAccess access, SceneReloader reload, SceneLimits limits,
+                         Clock& clock)
+    : clock_(clock),
+      scene_(std::move(scene)),
       name_(scene_.name),
       access_(access),
       reload_(std::move(reload)),
       limits_(limits),
       haptics_(scene_.haptics),
       time_step_(scene_.world.settings().time_step),
+      pacer_(clock_, time_step_),
       haptic_structure_(scene_.haptic_structure) {
   own_scene_bodies();
   publish();
@@ -174,18 +173,18 @@ SceneEvent SceneRunner::event(SceneEvent::Kind kind, ClientId by) const {
   e.client = by;
   e.step = scene_.world.step_count();
   e.sim_time = scene_.world.time();
-  e.time_scale = time_scale_;
+  e.time_scale = pacer_.scale();
   return e;
 }
 
 SceneStatus SceneRunner::status() const {
-  return {scene_.world.step_count(), scene_.world.time(), paused_, time_scale_};
+  return {scene_.world.step_count(), scene_.world.time(), pacer_.paused(), pacer_.scale()};
 }
 
 void SceneRunner::pause(ClientId by, Completion<SceneStatus> done) {
   request<SceneStatus>(std::move(done), [this, by](Scene&, Completion<SceneStatus>& done) {
-    if (!paused_) {
-      paused_ = true;
+    if (!pacer_.paused()) {
+      pacer_.pause();
       members_.broadcast(event(SceneEvent::Kind::kPaused, by));
     }
     done(status());
@@ -194,9 +193,8 @@ void SceneRunner::pause(ClientId by, Completion<SceneStatus> done) {
 
 void SceneRunner::resume(ClientId by, Completion<SceneStatus> done) {
   request<SceneStatus>(std::move(done), [this, by](Scene&, Completion<SceneStatus>& done) {
-    if (paused_) {
-      paused_ = false;
-      resync_ = true;
+    if (pacer_.paused()) {
+      pacer_.resume();
       members_.broadcast(event(SceneEvent::Kind::kResumed, by));
     }
     done(status());
@@ -205,7 +203,7 @@ void SceneRunner::resume(ClientId by, Completion<SceneStatus> done) {
 
 void SceneRunner::step(ClientId, std::uint32_t steps, Completion<SceneStatus> done) {
   request<SceneStatus>(std::move(done), [this, steps](Scene& scene, Completion<SceneStatus>& done) {
-    if (!paused_) {
+    if (!pacer_.paused()) {
       done(std::unexpected(
           error(RunnerError::Code::kWrongState, "the scene is running; pause it first")));
       return;
@@ -228,8 +226,7 @@ void SceneRunner::set_time_scale(ClientId by, double scale, Completion<SceneStat
       done(std::unexpected(error(RunnerError::Code::kBadRequest, "scale must be in (0, 100]")));
       return;
     }
-    time_scale_ = scale;
-    resync_ = true;
+    pacer_.set_scale(scale);
     members_.broadcast(event(SceneEvent::Kind::kTimeScale, by));
     done(status());
   });
@@ -258,7 +255,7 @@ void SceneRunner::reset(ClientId by, const Offload& build_on, Completion<SceneSt
         scene.world = std::move(fresh.world);
         own_scene_bodies();
         timed_forces_.clear();
-        resync_ = true;
+        pacer_.restart();
         publish_bodies();
         SceneEvent e = event(SceneEvent::Kind::kReset, by);
         e.bodies = bodies()->bodies;
@@ -288,7 +285,7 @@ void SceneRunner::restore(ClientId by, const WorldState& state, Completion<Scene
     done(std::unexpected(error(RunnerError::Code::kBadRequest, restored.error())));
     return;
   }
-  resync_ = true;
+  pacer_.restart();
   publish();
   members_.broadcast(event(SceneEvent::Kind::kStateRestored, by));
   done(status());
@@ -526,7 +523,7 @@ void SceneRunner::step_once() {
 }
 
 void SceneRunner::report_health(bool force) {
-  const auto now = Clock::now();
+  const auto now = clock_.now();
   for (auto [kind, troubled] : {std::pair{SceneEvent::Kind::kUnrecoverableStep, &unrecoverable_},
                                 std::pair{SceneEvent::Kind::kRescuedStep, &rescued_}}) {
     if (troubled->total == troubled->reported) continue;
@@ -544,19 +541,16 @@ void SceneRunner::report_health(bool force) {
 void SceneRunner::run(std::stop_token stop) {
   World& world = scene_.world;
   const double h = time_step_;
-  // while running, simulated time = time_scale · (wall time since `origin`); the origin is set
-  // again whenever the scene starts, resumes, changes scale or falls too far behind
-  Clock::time_point origin = Clock::now();
-  Clock::time_point window_start = Clock::now();
+  Clock::time_point window_start = clock_.now();
   double window_sim_start = world.time();
   double window_step_seconds = 0;
   std::uint64_t window_steps = 0;
-  unrecoverable_.last_event = rescued_.last_event = Clock::now() - std::chrono::hours(1);
+  unrecoverable_.last_event = rescued_.last_event = clock_.now() - std::chrono::hours(1);
 
   const auto timed_step = [&] {
-    const Clock::time_point start = Clock::now();
+    const Clock::time_point start = clock_.now();
     step_once();
-    window_step_seconds += Seconds(Clock::now() - start).count();
+    window_step_seconds += Seconds(clock_.now() - start).count();
     ++window_steps;
   };
 
@@ -567,7 +561,7 @@ void SceneRunner::run(std::stop_token stop) {
     if (!step_requests_.empty()) {
       // requested steps of a paused scene, as fast as they go; other requests still get in
       // between steps, and clients still see the scene move
-      Clock::time_point last_publish = Clock::now();
+      Clock::time_point last_publish = clock_.now();
       while (!step_requests_.empty() && !stop.stop_requested()) {
         timed_step();
         stepped = true;
@@ -576,29 +570,19 @@ void SceneRunner::run(std::stop_token stop) {
           step_requests_.erase(step_requests_.begin());
         }
         commands_.apply_all(scene_);
-        if (Clock::now() - last_publish >= kBurstPublishPeriod) {
+        if (clock_.now() - last_publish >= kBurstPublishPeriod) {
           publish();
           publish_haptics(SteadyClock::now());
-          last_publish = Clock::now();
+          last_publish = clock_.now();
         }
       }
-      resync_ = true;
-    } else if (!paused_) {
-      const Clock::time_point now = Clock::now();
-      const double scale = time_scale_;
-      if (resync_) {
-        origin = now - std::chrono::duration_cast<Clock::duration>(Seconds(world.time() / scale));
-        resync_ = false;
-      }
-      double lag = scale * Seconds(now - origin).count() - world.time();
-      if (lag > kMaxLagSeconds * std::max(1.0, scale)) {
-        origin += std::chrono::duration_cast<Clock::duration>(Seconds((lag - h) / scale));
-        lag = h;
-      }
+      pacer_.restart();
+    } else if (!pacer_.paused()) {
+      double lag = pacer_.lag(world.time());
       while (lag >= h && !stop.stop_requested()) {
         if (stepped) commands_.apply_all(scene_);
         // a pause or a StepScene just applied ends the run: its reply named this step
-        if (paused_ || !step_requests_.empty()) break;
+        if (pacer_.paused() || !step_requests_.empty()) break;
         timed_step();
         lag -= h;
         stepped = true;
@@ -617,15 +601,15 @@ void SceneRunner::run(std::stop_token stop) {
       publish_haptics(SteadyClock::now());
     }
 
-    const Clock::time_point after = Clock::now();
+    const Clock::time_point after = clock_.now();
     {
       std::lock_guard lock(stats_mutex_);
       stats_.steps = world.step_count();
       stats_.sim_time = world.time();
       stats_.rescued_steps = rescued_.total;
       stats_.unrecoverable_steps = unrecoverable_.total;
-      stats_.paused = paused_;
-      stats_.time_scale = time_scale_;
+      stats_.paused = pacer_.paused();
+      stats_.time_scale = pacer_.scale();
       const double window = Seconds(after - window_start).count();
       if (window >= kStatsWindowSeconds) {
         stats_.real_time_factor = (world.time() - window_sim_start) / window;
@@ -638,12 +622,10 @@ void SceneRunner::run(std::stop_token stop) {
     }
 
     // sleep until the next step is due, a request arrives, or stop() wakes us
-    if (!step_requests_.empty() || (!paused_ && resync_)) continue;
-    const auto due = paused_ ? after + kIdleWake
-                             : origin + std::chrono::duration_cast<Clock::duration>(
-                                            Seconds((world.time() + h) / time_scale_));
+    if (!step_requests_.empty() || (!pacer_.paused() && pacer_.restarting())) continue;
+    const auto due = pacer_.paused() ? after + kIdleWake : pacer_.next_due(world.time());
     std::unique_lock lock(wake_mutex_);
-    wake_.wait_until(lock, stop, due, [this] { return !commands_.idle(); });
+    clock_.wait_until(lock, wake_, stop, due, [this] { return !commands_.idle(); });
   }
   report_health(true);
 }

@@ -1,6 +1,6 @@
 #pragma once
 // One scene served live: a physics thread that is the only writer of the scene's World, paced
-// against the wall clock (or paused and stepped on request), applying queued requests between
+// against a clock (Pacer; or paused and stepped on request), applying queued requests between
 // steps and publishing immutable snapshots after them.
 
 #include <atomic>
@@ -19,10 +19,12 @@
 
 #include "core/world/world_state.hpp"
 #include "runtime/body_catalog.hpp"
+#include "runtime/clock.hpp"
 #include "runtime/command_queue.hpp"
 #include "runtime/haptic_frame.hpp"
 #include "runtime/haptic_proxy.hpp"
 #include "runtime/haptic_servo.hpp"
+#include "runtime/pacer.hpp"
 #include "runtime/published.hpp"
 #include "runtime/reaction_accumulator.hpp"
 #include "runtime/runner_error.hpp"
@@ -87,14 +89,15 @@ struct SceneLimits {
 
 class SceneRunner {
  public:
+  /// A scene whose physics thread paces itself, publishes and measures by `clock`.
   explicit SceneRunner(Scene scene, SceneAccess access = {}, SceneReloader reload = {},
-                       SceneLimits limits = {});
+                       SceneLimits limits = {}, Clock& clock = wall_clock());
   ~SceneRunner();
   SceneRunner(const SceneRunner&) = delete;
   SceneRunner& operator=(const SceneRunner&) = delete;
 
   /// Starts the physics thread, at `physics_nice` (0 to kMaxNice: set_this_thread_nice), and
-  /// the servo thread if the scene has scripted devices. Simulated time then follows the wall
+  /// the servo thread if the scene has scripted devices. Simulated time then follows the
   /// clock.
   void start(int physics_nice = 0);
   /// Finishes the current step and joins the physics and servo threads. Requests still queued
@@ -233,6 +236,7 @@ class SceneRunner {
   void added(ClientId by, BodyId id, Completion<BodyInfo>& done);
   void restore(ClientId by, const WorldState& state, Completion<SceneStatus>& done);
 
+  Clock& clock_;
   Scene scene_;  ///< written by the physics thread only, once started
   std::string name_;
   SceneAccess access_;
@@ -254,9 +258,7 @@ class SceneRunner {
   std::deque<SavedState> saved_;
   std::uint32_t next_state_id_ = 1;
   std::vector<StepRequest> step_requests_;
-  bool paused_ = false;
-  double time_scale_ = 1;
-  bool resync_ = true;  ///< the wall clock origin must be set again (start, resume, scale)
+  Pacer pacer_;
   /// Steps of one kind of trouble (rescued or unrecoverable): how many since the start, how
   /// many of them events have told, and the bodies of the last one.
   struct Troubled {

@@ -1,7 +1,8 @@
 #pragma once
-// What the runtime tests share: a small flat cloth scene, waiting for a condition, and a scene
-// member that records the events it hears.
+// What the runtime tests share: a small flat cloth scene, waiting for a condition, moving a
+// scene's manual clock, and a scene member that records the events it hears.
 
+#include <algorithm>
 #include <chrono>
 #include <future>
 #include <mutex>
@@ -11,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "core/cloth/cloth_grid.hpp"
+#include "manual_clock.hpp"
 #include "runtime/scene_runner.hpp"
 #include "support/time_scale.hpp"
 
@@ -48,6 +50,24 @@ bool wait_for(Predicate done, std::chrono::milliseconds timeout = 5s) {
   while (!done()) {
     if (std::chrono::steady_clock::now() > deadline) return false;
     std::this_thread::sleep_for(2ms);
+  }
+  return true;
+}
+
+/// Waits until the physics thread on `clock` has done what is due and sleeps.
+inline bool settled(const ManualClock& clock) {
+  return wait_for([&] { return clock.sleeping(); });
+}
+
+/// Moves `clock` on by `by` in slices of `slice` (shorter than a scene may fall behind before
+/// it re-synchronises), letting the physics thread on it catch up after each.
+inline bool move_clock(ManualClock& clock, Clock::duration by,
+                       Clock::duration slice = std::chrono::milliseconds(10)) {
+  while (by > Clock::duration::zero()) {
+    const Clock::duration move = std::min(by, slice);
+    clock.advance(move);
+    by -= move;
+    if (!settled(clock)) return false;
   }
   return true;
 }

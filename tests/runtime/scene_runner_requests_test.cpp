@@ -17,10 +17,11 @@ using Kind = SceneEvent::Kind;
 
 /// A falling flat cloth that can be built again (for reset), with a member that logs events.
 struct Fixture {
-  Fixture()
-      : runner(flat_cloth_scene(Vec3(0, -9.81, 0)), SceneAccess{1, false, false}, [] {
-          return std::expected<Scene, SceneError>(flat_cloth_scene(Vec3(0, -9.81, 0)));
-        }) {
+  explicit Fixture(Clock& clock = wall_clock())
+      : runner(
+            flat_cloth_scene(Vec3(0, -9.81, 0)), SceneAccess{1, false, false},
+            [] { return std::expected<Scene, SceneError>(flat_cloth_scene(Vec3(0, -9.81, 0))); },
+            {}, clock) {
     runner.members().join({2, "observer", log});
     runner.start();
   }
@@ -75,11 +76,13 @@ TEST(SceneRunnerRequests, NoStepFollowsAPauseReply) {
 }
 
 TEST(SceneRunnerRequests, APausedSceneTakesExactlyTheStepsAskedFor) {
-  Fixture f;
+  ManualClock clock;
+  Fixture f(clock);
+  ASSERT_TRUE(settled(clock));
   const auto paused = await<SceneStatus>([&](auto done) { f.runner.pause(1, done); });
   ASSERT_TRUE(paused);
   EXPECT_TRUE(paused->paused);
-  std::this_thread::sleep_for(50ms);
+  ASSERT_TRUE(move_clock(clock, 1s));
   EXPECT_EQ(f.runner.latest()->step, paused->step);  // nothing moves while paused
   const auto stepped = await<SceneStatus>([&](auto done) { f.runner.step(1, 250, done); });
   ASSERT_TRUE(stepped);
@@ -94,7 +97,10 @@ TEST(SceneRunnerRequests, APausedSceneTakesExactlyTheStepsAskedFor) {
   EXPECT_EQ(second.get()->step, stepped->step + 15);
   const auto resumed = await<SceneStatus>([&](auto done) { f.runner.resume(1, done); });
   ASSERT_TRUE(resumed);
-  ASSERT_TRUE(wait_for([&] { return f.runner.latest()->step > resumed->step + 20; }));
+  ASSERT_TRUE(settled(clock));
+  clock.advance(500us);
+  ASSERT_TRUE(move_clock(clock, 25ms));
+  EXPECT_EQ(f.runner.latest()->step, resumed->step + 25);  // from where it was, in step
   EXPECT_EQ(f.kinds(), (std::vector<Kind>{Kind::kPaused, Kind::kResumed}));
 }
 
@@ -136,17 +142,17 @@ TEST(SceneRunnerRequests, StepsNeedAPausedSceneAndASaneCount) {
 }
 
 TEST(SceneRunnerRequests, TimeScaleSetsSimulatedSecondsPerWallSecond) {
-  Fixture f;
+  ManualClock clock;
+  Fixture f(clock);
+  ASSERT_TRUE(settled(clock));
   ASSERT_TRUE(await<SceneStatus>([&](auto done) { f.runner.set_time_scale(1, 0.25, done); }));
-  const double t0 = f.runner.latest()->sim_time;
-  const auto wall0 = std::chrono::steady_clock::now();
-  std::this_thread::sleep_for(400ms);
-  const double simulated = f.runner.latest()->sim_time - t0;
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  // a quarter of real time (loose: a shared machine may run late, never fast)
-  EXPECT_LT(simulated, 0.35 * wall);
-  EXPECT_GT(simulated, 0.1 * wall);
+  ASSERT_TRUE(settled(clock));
+  const std::uint64_t start = f.runner.latest()->step;
+  // a step of 1 ms is 4 ms of the clock at a quarter of real time: the clock moves half a step,
+  // then two steps at a time, never stopping where one falls due
+  clock.advance(2ms);
+  ASSERT_TRUE(move_clock(clock, 400ms, 8ms));
+  EXPECT_EQ(f.runner.latest()->step - start, 100u);  // 0.1 s of simulated time in 0.4 s
   const auto bad = await<SceneStatus>([&](auto done) { f.runner.set_time_scale(1, 0, done); });
   EXPECT_EQ(bad.error().code, RunnerError::Code::kBadRequest);
   EXPECT_EQ(f.log->events().back().kind, Kind::kTimeScale);

@@ -10,20 +10,45 @@
 namespace felt {
 namespace {
 
-TEST(SceneRunner, PublishesSnapshotsThatFollowTheWallClock) {
-  SceneRunner runner(flat_cloth_scene(Vec3(0, -9.81, 0)));
+TEST(SceneRunner, PublishesSnapshotsThatFollowItsClock) {
+  ManualClock clock;
+  SceneRunner runner(flat_cloth_scene(Vec3(0, -9.81, 0)), {}, {}, {}, clock);
   const auto first = runner.latest();
   EXPECT_EQ(first->step, 0u);
   runner.start();
-  ASSERT_TRUE(wait_for([&] { return runner.latest()->sim_time >= 0.2; }));
+  ASSERT_TRUE(settled(clock));
+  EXPECT_EQ(runner.latest()->step, 0u);  // nothing is due before the clock moves
+  // half a step first, so that the clock never stops where a step falls due
+  clock.advance(500us);
+  ASSERT_TRUE(move_clock(clock, 200ms));
   const auto later = runner.latest();
   runner.stop();
+  EXPECT_EQ(later->step, 200u);  // a step of 1 ms per millisecond of the clock, exactly
+  EXPECT_DOUBLE_EQ(later->sim_time, 0.2);
   // the centre particle sags under gravity
   const std::uint32_t centre = 5 * 11 + 5;
   EXPECT_LT(later->bodies[0].positions[centre].y(), first->bodies[0].positions[centre].y() - 1e-3);
   // snapshots are immutable: the first one still shows the start
   EXPECT_EQ(first->bodies[0].positions[centre].y(), 0.0);
   EXPECT_EQ(runner.latest()->step, runner.stats().steps);
+}
+
+TEST(SceneRunner, ReportsTheRealTimeFactorOverHalfASecondOfItsClock) {
+  ManualClock clock;
+  SceneRunner runner(flat_cloth_scene(), {}, {}, {}, clock);
+  runner.start();
+  ASSERT_TRUE(settled(clock));
+  clock.advance(500us);
+  ASSERT_TRUE(move_clock(clock, 490ms));
+  EXPECT_EQ(runner.stats().real_time_factor, 0);  // the window is not full yet
+  ASSERT_TRUE(move_clock(clock, 10ms));
+  const RunnerStats stats = runner.stats();
+  runner.stop();
+  // 500 steps of 1 ms in the 500.5 ms since the thread started; a step takes no time of this
+  // clock
+  EXPECT_EQ(stats.steps, 500u);
+  EXPECT_DOUBLE_EQ(stats.real_time_factor, 0.5 / 0.5005);
+  EXPECT_EQ(stats.ms_per_step, 0);
 }
 
 TEST(SceneRunner, AppliesPostedCommandsBetweenSteps) {
@@ -81,17 +106,21 @@ TEST(SceneRunner, TouchPushesOutOfTheClothAndDentsIt) {
 
 TEST(SceneRunner, ASingleTouchKeepsPushingUntilTheNextUpdate) {
   // a device slower than the physics: its last reaction is held between its updates
-  SceneRunner runner(flat_cloth_scene());
+  ManualClock clock;
+  SceneRunner runner(flat_cloth_scene(), {}, {}, {}, clock);
   HapticProxy proxy = runner.open_proxy(1);
   const std::uint32_t centre = 5 * 11 + 5;
   ASSERT_TRUE(touch(runner, proxy, Vec3(0, 0.03, 0)).in_contact);
   runner.start();
-  ASSERT_TRUE(wait_for([&] { return runner.latest()->sim_time >= 0.2; }));
+  ASSERT_TRUE(settled(clock));
+  clock.advance(500us);
+  ASSERT_TRUE(move_clock(clock, 200ms));
   EXPECT_LT(runner.latest()->bodies[0].positions[centre].y(), -0.005);
   // a free update releases it: the sheet springs back toward flat
   touch(runner, proxy, Vec3(0, 1, 0));
-  ASSERT_TRUE(wait_for([&] { return runner.latest()->sim_time >= 2.0; }));
+  ASSERT_TRUE(move_clock(clock, 1800ms));
   runner.stop();
+  EXPECT_EQ(runner.latest()->step, 2000u);
   EXPECT_GT(runner.latest()->bodies[0].positions[centre].y(), -0.002);
 }
 
@@ -167,28 +196,35 @@ TEST(SceneRunner, UnrecoverableStepsBecomeCoalescedEvents) {
   params.spring(SpringKind::kStructural).stiffness = 1e8;
   cloth.set_params(params);
   cloth.set_integrator(make_integrator("explicit_euler"));
-  SceneRunner runner(std::move(scene));
+  ManualClock clock;
+  SceneRunner runner(std::move(scene), {}, {}, {}, clock);
   auto log = std::make_shared<EventLog>();
   runner.members().join({7, "test", log});
   runner.start();
-  const auto unrecoverable = [&] {
-    std::vector<SceneEvent> events = log->events();
-    std::erase_if(
-        events, [](const SceneEvent& e) { return e.kind != SceneEvent::Kind::kUnrecoverableStep; });
-    return events;
-  };
-  ASSERT_TRUE(wait_for([&] { return unrecoverable().size() >= 2; }));
+  ASSERT_TRUE(settled(clock));
+  clock.advance(500us);
+  ASSERT_TRUE(move_clock(clock, 1200ms));
+  const std::uint64_t failed = runner.stats().unrecoverable_steps;
+  std::vector<SceneEvent> events = log->events();
   runner.stop();
-  const std::vector<SceneEvent> events = unrecoverable();
-  EXPECT_EQ(events[0].kind, SceneEvent::Kind::kUnrecoverableStep);
-  EXPECT_LT(events[0].sequence, events[1].sequence);
+  std::erase_if(events,
+                [](const SceneEvent& e) { return e.kind != SceneEvent::Kind::kUnrecoverableStep; });
+  // every step but the first few fails: the first pass's (10 steps) are told at once, then the
+  // steps of each half second of the clock in one event, not one event per step
+  ASSERT_EQ(events.size(), 3u);
+  EXPECT_EQ(events[0].step, 10u);
+  EXPECT_GT(events[0].count, 0u);
   EXPECT_EQ(events[0].body_ids, std::vector<BodyId>{0});
-  // every step fails, so the second event counts each step since the first: many steps in the
-  // half second the runner waits between events, not one event per step
-  EXPECT_EQ(events[1].count, events[1].step - events[0].step);
-  EXPECT_GT(events[1].count, 1u);
-  // the events count every failed step they report, and no step twice
-  EXPECT_GE(runner.stats().unrecoverable_steps, events[0].count + events[1].count);
+  EXPECT_EQ(events[1].step, 510u);
+  EXPECT_EQ(events[1].count, 500u);
+  EXPECT_EQ(events[2].step, 1010u);
+  EXPECT_EQ(events[2].count, 500u);
+  EXPECT_EQ(failed, events[0].count + 1000u + 190u);
+  EXPECT_LT(events[0].sequence, events[1].sequence);
+  // stopping tells the rest
+  const auto last = log->events().back();
+  EXPECT_EQ(last.kind, SceneEvent::Kind::kUnrecoverableStep);
+  EXPECT_EQ(last.count, 190u);
 }
 
 }  // namespace

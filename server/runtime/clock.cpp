@@ -1,0 +1,10 @@
+#include "runtime/clock.hpp"
+
+namespace felt {
+
+Clock& wall_clock() {
+  static WallClock clock;
+  return clock;
+}
+
+}  // namespace felt
