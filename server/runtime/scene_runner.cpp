@@ -17,8 +17,6 @@ using Seconds = std::chrono::duration<double>;
 
 // rescued and unrecoverable steps are reported at most this often
 constexpr double kEventIntervalSeconds = 0.5;
-// real-time factor and step time are averaged over windows this long
-constexpr double kStatsWindowSeconds = 0.5;
 // haptic frames are made while some proxy was rendered this recently
 constexpr auto kHapticIdle = std::chrono::seconds(1);
 // retired haptic frames kept for reuse: the latest, one a reader may still hold, one free
@@ -541,17 +539,13 @@ void SceneRunner::report_health(bool force) {
 void SceneRunner::run(std::stop_token stop) {
   World& world = scene_.world;
   const double h = time_step_;
-  Clock::time_point window_start = clock_.now();
-  double window_sim_start = world.time();
-  double window_step_seconds = 0;
-  std::uint64_t window_steps = 0;
+  StatsWindow window(clock_.now(), world.time());
   unrecoverable_.last_event = rescued_.last_event = clock_.now() - std::chrono::hours(1);
 
   const auto timed_step = [&] {
     const Clock::time_point start = clock_.now();
     step_once();
-    window_step_seconds += Seconds(clock_.now() - start).count();
-    ++window_steps;
+    window.add_step(clock_.now() - start);
   };
 
   while (!stop.stop_requested()) {
@@ -610,14 +604,9 @@ void SceneRunner::run(std::stop_token stop) {
       stats_.unrecoverable_steps = unrecoverable_.total;
       stats_.paused = pacer_.paused();
       stats_.time_scale = pacer_.scale();
-      const double window = Seconds(after - window_start).count();
-      if (window >= kStatsWindowSeconds) {
-        stats_.real_time_factor = (world.time() - window_sim_start) / window;
-        stats_.ms_per_step = window_steps ? 1e3 * window_step_seconds / window_steps : 0;
-        window_start = after;
-        window_sim_start = world.time();
-        window_step_seconds = 0;
-        window_steps = 0;
+      if (const auto rates = window.close_if_full(after, world.time())) {
+        stats_.real_time_factor = rates->real_time_factor;
+        stats_.ms_per_step = rates->ms_per_step;
       }
     }
 

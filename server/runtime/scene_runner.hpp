@@ -30,6 +30,7 @@
 #include "runtime/runner_error.hpp"
 #include "runtime/scene_members.hpp"
 #include "runtime/snapshot.hpp"
+#include "runtime/stats_window.hpp"
 #include "runtime/timed_forces.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_error.hpp"
@@ -40,8 +41,8 @@ namespace felt {
 struct RunnerStats {
   std::uint64_t steps = 0;
   double sim_time = 0;
-  double real_time_factor = 0;  ///< simulated seconds per wall second, over the last half second
-  double ms_per_step = 0;       ///< wall time of one step, averaged over the last half second
+  double real_time_factor = 0;  ///< simulated seconds per wall second, over StatsWindow::kLength
+  double ms_per_step = 0;       ///< wall time of one step, averaged over StatsWindow::kLength
   std::uint64_t haptic_updates = 0;  ///< proxy solves since the scene started
   std::uint64_t rescued_steps = 0;
   std::uint64_t unrecoverable_steps = 0;
