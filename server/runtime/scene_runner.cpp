@@ -13,10 +13,6 @@
 namespace felt {
 namespace {
 
-using Seconds = std::chrono::duration<double>;
-
-// rescued and unrecoverable steps are reported at most this often
-constexpr double kEventIntervalSeconds = 0.5;
 // haptic frames are made while some proxy was rendered this recently
 constexpr auto kHapticIdle = std::chrono::seconds(1);
 // retired haptic frames kept for reuse: the latest, one a reader may still hold, one free
@@ -512,35 +508,17 @@ void SceneRunner::step_once() {
   World& world = scene_.world;
   timed_forces_.apply(world);
   reactions_.apply_and_clear(world);
-  const StepReport report = world.step(yield_core);
-  if (report.flags & kStepRescued) ++rescued_.total;
-  if (report.flags & kStepUnrecoverable) {
-    ++unrecoverable_.total;
-    unrecoverable_.bodies = report.unrecoverable_bodies;
-  }
+  health_.count(world.step(yield_core));
 }
 
-void SceneRunner::report_health(bool force) {
-  const auto now = clock_.now();
-  for (auto [kind, troubled] : {std::pair{SceneEvent::Kind::kUnrecoverableStep, &unrecoverable_},
-                                std::pair{SceneEvent::Kind::kRescuedStep, &rescued_}}) {
-    if (troubled->total == troubled->reported) continue;
-    if (!force && Seconds(now - troubled->last_event).count() < kEventIntervalSeconds) continue;
-    SceneEvent e = event(kind, 0);
-    e.count = troubled->total - troubled->reported;
-    e.body_ids = std::move(troubled->bodies);
-    members_.broadcast(std::move(e));
-    troubled->reported = troubled->total;
-    troubled->bodies.clear();
-    troubled->last_event = now;
-  }
+void SceneRunner::report_health(bool at_once) {
+  health_.report(clock_.now(), at_once, event(SceneEvent::Kind::kUnrecoverableStep, 0));
 }
 
 void SceneRunner::run(std::stop_token stop) {
   World& world = scene_.world;
   const double h = time_step_;
   StatsWindow window(clock_.now(), world.time());
-  unrecoverable_.last_event = rescued_.last_event = clock_.now() - std::chrono::hours(1);
 
   const auto timed_step = [&] {
     const Clock::time_point start = clock_.now();
@@ -600,8 +578,8 @@ void SceneRunner::run(std::stop_token stop) {
       std::lock_guard lock(stats_mutex_);
       stats_.steps = world.step_count();
       stats_.sim_time = world.time();
-      stats_.rescued_steps = rescued_.total;
-      stats_.unrecoverable_steps = unrecoverable_.total;
+      stats_.rescued_steps = health_.rescued();
+      stats_.unrecoverable_steps = health_.unrecoverable();
       stats_.paused = pacer_.paused();
       stats_.time_scale = pacer_.scale();
       if (const auto rates = window.close_if_full(after, world.time())) {

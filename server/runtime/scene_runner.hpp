@@ -24,6 +24,7 @@
 #include "runtime/haptic_frame.hpp"
 #include "runtime/haptic_proxy.hpp"
 #include "runtime/haptic_servo.hpp"
+#include "runtime/health_events.hpp"
 #include "runtime/pacer.hpp"
 #include "runtime/published.hpp"
 #include "runtime/reaction_accumulator.hpp"
@@ -214,8 +215,8 @@ class SceneRunner {
   /// nobody reads any more when there is one; with haptic_mutex_ held.
   std::shared_ptr<HapticFrame> make_pooled_haptic_frame(const HapticFrame* previous,
                                                         SteadyClock::time_point now);
-  /// Reports rescued and unrecoverable steps not yet reported, at most twice a second.
-  void report_health(bool force);
+  /// Reports rescued and unrecoverable steps not yet reported (HealthEvents::report).
+  void report_health(bool at_once);
   SceneStatus status() const;
   /// Queues `run`; its completion gets kCancelled if the scene stops first.
   template <class T>
@@ -260,15 +261,7 @@ class SceneRunner {
   std::uint32_t next_state_id_ = 1;
   std::vector<StepRequest> step_requests_;
   Pacer pacer_;
-  /// Steps of one kind of trouble (rescued or unrecoverable): how many since the start, how
-  /// many of them events have told, and the bodies of the last one.
-  struct Troubled {
-    std::uint64_t total = 0;
-    std::uint64_t reported = 0;
-    std::vector<BodyId> bodies;  ///< unrecoverable steps only
-    std::chrono::steady_clock::time_point last_event{};
-  };
-  Troubled unrecoverable_, rescued_;
+  HealthEvents health_{members_};
 
   TriangleQueryKind haptic_structure_;
   Published<HapticFrame> haptic_;
