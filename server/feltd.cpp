@@ -29,6 +29,8 @@ using felt::SceneId;
 
 struct ServeOptions {
   std::string listen = "127.0.0.1:7450";
+  std::string web;                       ///< HOST:PORT of the page and its WebSocket; empty: off
+  std::string web_root = FELT_WEB_ROOT;  ///< the page's build folder
   std::string scene_dir = "scenes";
   std::vector<std::string> scenes;
   bool status = false;
@@ -85,10 +87,23 @@ void print_status(felt::SceneRegistry& scenes, SceneId scene, felt::net::Server&
   last_haptic_updates = stats.haptic_updates;
 }
 
+/// HOST:PORT as a URL names it ([v6]:PORT).
+std::string host_port(const asio::ip::tcp::endpoint& endpoint) {
+  const auto ip = endpoint.address();
+  return (ip.is_v6() ? "[" + ip.to_string() + "]" : ip.to_string()) + ":" +
+         std::to_string(endpoint.port());
+}
+
 int serve(const ServeOptions& options) {
   const auto address = felt::wire::parse_host_port(options.listen);
   if (!address) {
     std::cerr << "feltd: --listen: " << address.error() << "\n";
+    return 2;
+  }
+  const auto web_address =
+      options.web.empty() ? std::nullopt : std::optional(felt::wire::parse_host_port(options.web));
+  if (web_address && !*web_address) {
+    std::cerr << "feltd: --web: " << web_address->error() << "\n";
     return 2;
   }
   felt::SceneRegistry scenes;
@@ -140,10 +155,21 @@ int serve(const ServeOptions& options) {
     scenes.stop_all();
     return 1;
   }
-  const auto ip = endpoint->address();
-  std::printf("listening on %s:%u\n",
-              ip.is_v6() ? ("[" + ip.to_string() + "]").c_str() : ip.to_string().c_str(),
-              static_cast<unsigned>(endpoint->port()));
+  std::printf("listening on %s\n", host_port(*endpoint).c_str());
+  if (web_address) {
+    const auto web =
+        server.listen_web((*web_address)->host, (*web_address)->port, options.web_root);
+    if (!web) {
+      std::cerr << "feltd: --web: " << web.error() << "\n";
+      scenes.stop_all();
+      return 1;
+    }
+    std::printf("web on http://%s/\n", host_port(*web).c_str());
+    if (!std::filesystem::exists(std::filesystem::path(options.web_root) / "index.html")) {
+      std::fprintf(stderr, "feltd: --web-root %s has no index.html: build the page first\n",
+                   options.web_root.c_str());
+    }
+  }
   std::fflush(stdout);
 
   // the daemon's own timers and signals take turns on one strand; sessions have theirs
@@ -370,9 +396,15 @@ int main(int argc, char** argv) {
   ServeOptions serve_options;
   felt::net::ServerOptions& limits = serve_options.limits;
   if (const char* token = std::getenv("FELT_TOKEN")) limits.token = token;
-  CLI::App* serve_cmd = app.add_subcommand("serve", "Serve scenes over TCP (protocol felt.v1)");
+  CLI::App* serve_cmd =
+      app.add_subcommand("serve", "Serve scenes over TCP and WebSocket (protocol felt.v1)");
   serve_cmd
       ->add_option("--listen", serve_options.listen, "HOST:PORT to listen on; port 0 picks one")
+      ->capture_default_str();
+  serve_cmd->add_option("--web", serve_options.web,
+                        "HOST:PORT to serve the page and its WebSocket (/ws) on; port 0 picks one "
+                        "(default: off)");
+  serve_cmd->add_option("--web-root", serve_options.web_root, "The page's build folder")
       ->capture_default_str();
   serve_cmd
       ->add_option("--scene-dir", serve_options.scene_dir,

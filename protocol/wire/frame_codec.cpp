@@ -1,5 +1,7 @@
 #include "wire/frame_codec.hpp"
 
+#include <algorithm>
+
 namespace felt::wire {
 
 void append_varint(std::string& out, std::uint64_t value) {
@@ -13,6 +15,18 @@ void append_varint(std::string& out, std::uint64_t value) {
 void append_frame(std::string& out, std::string_view payload) {
   append_varint(out, payload.size());
   out.append(payload);
+}
+
+std::optional<FrameView> first_frame(std::string_view frames) {
+  std::uint64_t length = 0;
+  for (std::size_t i = 0; i < std::min(frames.size(), kMaxVarintBytes); ++i) {
+    const auto byte = static_cast<std::uint8_t>(frames[i]);
+    length |= static_cast<std::uint64_t>(byte & 0x7f) << (7 * i);
+    if ((byte & 0x80) != 0) continue;
+    if (frames.size() - (i + 1) < length) return std::nullopt;
+    return FrameView{frames.substr(i + 1, length), i + 1 + length};
+  }
+  return std::nullopt;
 }
 
 FrameDecoder::FrameDecoder(std::size_t max_frame_bytes) : max_frame_bytes_(max_frame_bytes) {}

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -20,6 +21,16 @@ void append_varint(std::string& out, std::uint64_t value);
 
 /// Appends one frame: the varint length of `payload`, then `payload`.
 void append_frame(std::string& out, std::string_view payload);
+
+/// A frame at the front of a buffer: its payload, and the bytes it takes with its prefix.
+struct FrameView {
+  std::string_view payload;
+  std::size_t size = 0;
+};
+
+/// The whole frame that `frames` (frames back to back, as append_frame writes them) starts
+/// with; nothing when it does not start with one.
+std::optional<FrameView> first_frame(std::string_view frames);
 
 enum class DecodeStatus {
   kFrame,     ///< a whole frame is available in DecodeResult::payload

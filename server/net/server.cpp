@@ -2,7 +2,9 @@
 
 #include <algorithm>
 
+#include "net/bind_acceptor.hpp"
 #include "net/session.hpp"
+#include "net/tcp_transport.hpp"
 
 namespace felt::net {
 
@@ -14,22 +16,18 @@ Server::Server(IoPool& io, ServerContext& context)
 
 std::expected<tcp::endpoint, std::string> Server::listen(const std::string& host,
                                                          std::uint16_t port) {
-  boost::system::error_code ec;
-  tcp::resolver resolver(io_.main());
-  const auto results = resolver.resolve(
-      host, std::to_string(port), tcp::resolver::numeric_service | tcp::resolver::passive, ec);
-  if (ec || results.empty()) return std::unexpected("cannot resolve " + host + ": " + ec.message());
-  const tcp::endpoint endpoint = results.begin()->endpoint();
-  acceptor_.open(endpoint.protocol(), ec);
-  if (!ec) acceptor_.set_option(tcp::acceptor::reuse_address(true), ec);
-  if (!ec) acceptor_.bind(endpoint, ec);
-  if (!ec) acceptor_.listen(asio::socket_base::max_listen_connections, ec);
-  if (ec) {
-    return std::unexpected("cannot listen on " + endpoint.address().to_string() + ":" +
-                           std::to_string(port) + ": " + ec.message());
-  }
-  accept();
-  return acceptor_.local_endpoint();
+  auto endpoint = bind_acceptor(acceptor_, host, port);
+  if (endpoint) accept();
+  return endpoint;
+}
+
+std::expected<tcp::endpoint, std::string> Server::listen_web(
+    const std::string& host, std::uint16_t port, const std::filesystem::path& page_root) {
+  web_ = std::make_unique<WebListener>(
+      io_,
+      WebSettings{page_root, context_.options.max_inbound_frame_bytes,
+                  [this](std::unique_ptr<Transport> transport) { admit(std::move(transport)); }});
+  return web_->listen(host, port);
 }
 
 void Server::accept() {
@@ -40,23 +38,27 @@ void Server::accept() {
     if (ec == asio::error::operation_aborted || !acceptor_.is_open()) return;
     if (!ec) {
       socket.set_option(tcp::no_delay(true));  // a ForceUpdate must not wait for Nagle
-      auto session = std::make_shared<Session>(std::move(socket), context_);
-      if (context_.clients.load() >= context_.options.max_clients) {
-        session->reject(felt::v1::ERROR_CODE_LIMIT_EXCEEDED,
-                        "the server already serves " +
-                            std::to_string(context_.options.max_clients) +
-                            " clients (--max-clients)");
-      } else {
-        std::lock_guard lock(sessions_mutex_);
-        std::erase_if(sessions_, [](const std::weak_ptr<Session>& s) { return s.expired(); });
-        sessions_.push_back(session);
-        session->start();
-        // accepted while shutdown() went through the sessions: it hears the goodbye too
-        if (shutting_down_) session->close_gracefully();
-      }
+      admit(std::make_unique<TcpTransport>(std::move(socket),
+                                           context_.options.max_inbound_frame_bytes));
     }
     accept();
   });
+}
+
+void Server::admit(std::unique_ptr<Transport> transport) {
+  auto session = std::make_shared<Session>(std::move(transport), context_);
+  if (context_.clients.load() >= context_.options.max_clients) {
+    session->reject(felt::v1::ERROR_CODE_LIMIT_EXCEEDED,
+                    "the server already serves " + std::to_string(context_.options.max_clients) +
+                        " clients (--max-clients)");
+    return;
+  }
+  std::lock_guard lock(sessions_mutex_);
+  std::erase_if(sessions_, [](const std::weak_ptr<Session>& s) { return s.expired(); });
+  sessions_.push_back(session);
+  session->start();
+  // accepted while shutdown() went through the sessions: it hears the goodbye too
+  if (shutting_down_) session->close_gracefully();
 }
 
 void Server::shutdown() {
@@ -65,6 +67,7 @@ void Server::shutdown() {
     boost::system::error_code ignored;
     acceptor_.close(ignored);
   });
+  if (web_) web_->close();
   std::lock_guard lock(sessions_mutex_);
   shutting_down_ = true;
   for (const auto& session : live_sessions()) session->close_gracefully();

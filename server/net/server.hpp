@@ -1,8 +1,10 @@
 #pragma once
-// Accepts connections and owns the list of live sessions.
+// Accepts connections, on the TCP port and (with --web) the web port, and owns the list of live
+// sessions, whatever their transport.
 
 #include <cstdint>
 #include <expected>
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -12,6 +14,8 @@
 
 #include "net/io_pool.hpp"
 #include "net/server_context.hpp"
+#include "net/transport.hpp"
+#include "net/web_listener.hpp"
 
 namespace felt::net {
 
@@ -25,6 +29,10 @@ class Server {
   /// Binds and starts accepting; port 0 picks a free port. Returns the bound endpoint.
   std::expected<boost::asio::ip::tcp::endpoint, std::string> listen(const std::string& host,
                                                                     std::uint16_t port);
+  /// Serves the page's files from `page_root` and WebSocket sessions at /ws on HOST:PORT; port
+  /// 0 picks a free port. Returns the bound endpoint.
+  std::expected<boost::asio::ip::tcp::endpoint, std::string> listen_web(
+      const std::string& host, std::uint16_t port, const std::filesystem::path& page_root);
   /// Stops accepting, tells every session's client that the server stops and closes the
   /// session once what it has queued is written (client_count() falls to 0 as they finish).
   void shutdown();
@@ -35,12 +43,15 @@ class Server {
 
  private:
   void accept();
+  /// Serves a new connection as a session, or refuses it past --max-clients (on its strand).
+  void admit(std::unique_ptr<Transport> transport);
   /// Forgets the sessions that ended and returns the others; the caller holds sessions_mutex_.
   std::vector<std::shared_ptr<Session>> live_sessions();
 
   IoPool& io_;
   ServerContext& context_;
   boost::asio::ip::tcp::acceptor acceptor_;
+  std::unique_ptr<WebListener> web_;
   std::mutex sessions_mutex_;
   std::vector<std::weak_ptr<Session>> sessions_;
   bool shutting_down_ = false;  ///< shutdown() ran: new sessions are told goodbye at once

@@ -1,5 +1,7 @@
 #include "net/session.hpp"
 
+#include <boost/asio/dispatch.hpp>
+
 #include "net/dispatcher.hpp"
 #include "net/wire_convert.hpp"
 #include "wire/message_codec.hpp"
@@ -16,9 +18,6 @@ namespace {
 constexpr int kRequestsPerTurn = 32;
 /// A proxy not updated for this long lets go of the surface it kept from its last update.
 constexpr auto kProxyIdle = std::chrono::seconds(1);
-/// The reply buffer a session keeps between writes, bytes: ForceUpdates and the usual replies
-/// fit many times over.
-constexpr std::size_t kKeptReplyCapacity = 64 * 1024;
 
 }  // namespace
 
@@ -32,8 +31,8 @@ class Session::Membership : public SceneListener {
     if (auto session = session_.lock()) {
       // the reference moves into the handler: this (physics) thread must never hold the last
       // one, or the session would be destroyed here
-      const auto executor = session->socket_.get_executor();
-      asio::post(executor, [session = std::move(session), scene = scene_, event] {
+      Session& target = *session;
+      target.post([session = std::move(session), scene = scene_, event] {
         session->on_scene_event(scene, event);
       });
     }
@@ -44,48 +43,13 @@ class Session::Membership : public SceneListener {
   SceneId scene_;
 };
 
-PendingReply::PendingReply(std::shared_ptr<Session> session, std::uint64_t request_id)
-    : session_(session), request_id_(request_id) {
-  ++session->in_flight_;
-}
-
-PendingReply::~PendingReply() {
-  // every deferred request is answered; one dropped unanswered is a server bug, reported as such
-  if (!sent_) fail(v1::ERROR_CODE_INTERNAL, "the request was dropped");
-}
-
-void PendingReply::send(v1::ServerMessage message) {
-  if (sent_.exchange(true)) return;
-  auto session = session_.lock();
-  if (!session) return;
-  message.set_request_id(request_id_);
-  // as for events: the reference moves into the handler, off the calling thread
-  const auto executor = session->socket_.get_executor();
-  asio::post(executor, [session = std::move(session), message = std::move(message)] {
-    --session->in_flight_;
-    session->send(message);
-  });
-}
-
-void PendingReply::fail(v1::ErrorCode code, std::string message) {
-  v1::ServerMessage reply;
-  fill_error(request_id_, code, message, reply);
-  send(std::move(reply));
-}
-
-Session::Session(asio::ip::tcp::socket socket, ServerContext& context)
-    : socket_(std::move(socket)),
+Session::Session(std::unique_ptr<Transport> transport, ServerContext& context)
+    : transport_(std::move(transport)),
       context_(context),
       id_(context.next_client_id.fetch_add(1)),
-      decoder_(context.options.max_inbound_frame_bytes),
-      hello_timer_(socket_.get_executor()),
-      frame_timer_(socket_.get_executor()) {
-  // write_next writes from the handler that has something to send, and must never wait; a
-  // socket that cannot be made so is closed, and the session ends at its first read
-  boost::system::error_code ec;
-  socket_.non_blocking(true, ec);
-  if (ec) socket_.close(ec);
-}
+      outbound_(*transport_, *this, context.options.max_queued_reply_bytes),
+      frames_(transport_->executor(), context.frame_encoder, outbound_),
+      hello_timer_(transport_->executor()) {}
 
 Session::~Session() {
   // a session normally leaves on its strand when its connection ends; one destroyed with the
@@ -94,10 +58,17 @@ Session::~Session() {
   if (counted_) --context_.clients;
 }
 
+void Session::hold_while_busy() {
+  outbound_.set_owner(weak_from_this());
+  frames_.set_owner(weak_from_this());
+}
+
 void Session::start() {
   counted_ = true;
   ++context_.clients;
-  asio::dispatch(socket_.get_executor(), [self = shared_from_this()] {
+  hold_while_busy();
+  frames_.on_tick([this] { forget_idle_proxy_surfaces(SteadyClock::now()); });
+  asio::dispatch(transport_->executor(), [self = shared_from_this()] {
     self->start_hello_deadline();
     self->read();
   });
@@ -108,7 +79,7 @@ void Session::start_hello_deadline() {
   // weak: the timer never keeps a session alive; the session cancels it when greeted or closed
   hello_timer_.async_wait([weak = weak_from_this()](const boost::system::error_code& ec) {
     const auto self = weak.lock();
-    if (ec || !self || self->greeted_ || self->closed_ || self->closing_) return;
+    if (ec || !self || self->greeted_ || self->closed_ || self->outbound_.closing()) return;
     self->send_error(0, v1::ERROR_CODE_HELLO_REQUIRED,
                      "no Hello within " + std::to_string(self->context_.options.hello_timeout_ms) +
                          " ms; the connection closes");
@@ -117,22 +88,19 @@ void Session::start_hello_deadline() {
 }
 
 void Session::reject(v1::ErrorCode code, const std::string& message) {
-  asio::dispatch(socket_.get_executor(), [self = shared_from_this(), code, message] {
+  hold_while_busy();  // the refusal is written before the session goes
+  asio::dispatch(transport_->executor(), [self = shared_from_this(), code, message] {
     self->send_error(0, code, message);
     self->close_after_replies();
   });
 }
 
-void Session::post(std::function<void()> task) {
-  asio::post(socket_.get_executor(), std::move(task));
-}
-
 void Session::close() {
-  asio::post(socket_.get_executor(), [self = shared_from_this()] { self->shutdown(); });
+  post([self = shared_from_this()] { self->shutdown(false); });
 }
 
 void Session::close_gracefully() {
-  asio::post(socket_.get_executor(), [self = shared_from_this()] {
+  post([self = shared_from_this()] {
     if (self->closed_) return;
     v1::ServerMessage goodbye;
     v1::SceneEvent& event = *goodbye.mutable_event();
@@ -143,14 +111,17 @@ void Session::close_gracefully() {
   });
 }
 
-void Session::shutdown() {
+void Session::shutdown(bool gracefully) {
   if (closed_) return;
   closed_ = true;
   hello_timer_.cancel();
-  frame_timer_.cancel();
-  boost::system::error_code ignored;
-  socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
-  socket_.close(ignored);
+  frames_.stop();
+  outbound_.stop();
+  if (gracefully) {
+    transport_->finish();
+  } else {
+    transport_->close();
+  }
   leave_scene();
   if (counted_) {
     counted_ = false;
@@ -159,36 +130,35 @@ void Session::shutdown() {
 }
 
 void Session::read() {
-  socket_.async_read_some(
-      asio::buffer(read_buffer_),
-      [self = shared_from_this()](const boost::system::error_code& ec, std::size_t bytes) {
-        self->on_read(ec, bytes);
-      });
+  transport_->receive([self = shared_from_this()](const boost::system::error_code& ec,
+                                                  std::size_t bytes) { self->on_read(ec, bytes); });
 }
 
 void Session::on_read(const boost::system::error_code& ec, std::size_t bytes) {
   if (ec || closed_) {
-    shutdown();
+    shutdown(false);
     return;
   }
-  counters_.bytes_received += bytes;
-  decoder_.feed(std::span<const std::uint8_t>(read_buffer_.data(), bytes));
+  bytes_received_ += bytes;
   process();
 }
 
 void Session::process() {
-  for (int handled = 0; !closing_ && !closed_; ++handled) {
+  for (int handled = 0; !outbound_.closing() && !closed_; ++handled) {
     if (handled == kRequestsPerTurn) {
-      asio::post(socket_.get_executor(), [self = shared_from_this()] { self->process(); });
+      post([self = shared_from_this()] { self->process(); });
       return;
     }
-    const wire::DecodeResult frame = decoder_.next();
+    const wire::DecodeResult frame = transport_->next();
     if (frame.status == wire::DecodeStatus::kNeedMore) break;
     if (frame.status == wire::DecodeStatus::kTooLarge) {
+      const std::string limit = std::to_string(context_.options.max_inbound_frame_bytes);
+      // a WebSocket message's size is known only as far as it was read
       send_error(0, v1::ERROR_CODE_FRAME_TOO_LARGE,
-                 "frame of " + std::to_string(frame.announced_length) +
-                     " bytes exceeds the limit of " + std::to_string(decoder_.max_frame_bytes()));
-      close_after_replies();  // the error goes out, then the write path closes the socket
+                 frame.announced_length > 0 ? "frame of " + std::to_string(frame.announced_length) +
+                                                  " bytes exceeds the limit of " + limit
+                                            : "a message over the limit of " + limit + " bytes");
+      close_after_replies();  // the error goes out, then the connection closes
       break;
     }
     v1::ClientMessage message;
@@ -198,25 +168,16 @@ void Session::process() {
       close_after_replies();
       break;
     }
-    ++counters_.requests;
+    ++requests_;
     dispatch(*this, message);
   }
-  if (closed_ || closing_) return;
+  if (closed_ || outbound_.closing()) return;
   read();
 }
 
 void Session::send(const v1::ServerMessage& message) {
-  if (closed_ || !socket_.is_open()) return;
-  const bool backlog = !queued_replies_.empty();
-  wire::append_message(queued_replies_, message);
-  // one reply larger than the backlog on its own (a big saved state) still goes out
-  if (queued_replies_.size() > context_.options.max_queued_reply_bytes && backlog) {
-    // the client does not read its replies; dropping them would break the protocol
-    std::string().swap(queued_replies_);
-    shutdown();
-    return;
-  }
-  write_next();
+  if (closed_) return;
+  outbound_.push(message);
 }
 
 void Session::send_error(std::uint64_t request_id, v1::ErrorCode code, const std::string& text) {
@@ -226,14 +187,27 @@ void Session::send_error(std::uint64_t request_id, v1::ErrorCode code, const std
 }
 
 void Session::close_after_replies() {
-  closing_ = true;
-  drop_pending_frame();
-  write_next();
+  frames_.drop_pending();
+  outbound_.close_after_queued();
 }
 
 std::shared_ptr<PendingReply> Session::defer(std::uint64_t request_id) {
   if (in_flight_.load() >= context_.options.max_requests_in_flight) return nullptr;
   return std::make_shared<PendingReply>(shared_from_this(), request_id);
+}
+
+void Session::end_deferred(const v1::ServerMessage& reply) {
+  --in_flight_;
+  send(reply);
+}
+
+void Session::on_frame_written() {
+  frames_.written();
+  ++frames_sent_;
+}
+
+Session::Counters Session::counters() const {
+  return {requests_, frames_sent_, frames_.skipped(), outbound_.bytes_sent(), bytes_received_};
 }
 
 void Session::set_greeted(std::string client_name) {
@@ -249,48 +223,6 @@ bool Session::refuse_hello() {
   return ++refused_hellos_ >= kMaxRefusedHellos;
 }
 
-void Session::write_next() {
-  while (!writing_ && !closed_ && socket_.is_open()) {
-    if (!queued_replies_.empty()) {
-      // every queued reply goes out in one write, and the buffer written last takes their
-      // place; one grown past what replies usually need (a burst, a frame) is let go
-      in_flight_bytes_.swap(queued_replies_);
-      queued_replies_.clear();
-      if (queued_replies_.capacity() > kKeptReplyCapacity) std::string().swap(queued_replies_);
-    } else if (frame_pending_ && !closing_) {
-      in_flight_bytes_.swap(pending_frame_);
-      frame_pending_ = false;
-      frames_.written();
-      ++counters_.frames_sent;
-    } else {
-      if (closing_) shutdown();
-      return;
-    }
-    counters_.bytes_sent += in_flight_bytes_.size();
-    // what the kernel takes at once is done here: a write left to finish in a completion
-    // handler would hold the next ForceUpdate until that handler's thread gets a core (with
-    // the physics thread busy, up to a millisecond: the outbound leg's tail)
-    boost::system::error_code ec;
-    const std::size_t written = socket_.write_some(asio::buffer(in_flight_bytes_), ec);
-    if (ec && ec != asio::error::would_block && ec != asio::error::try_again) {
-      shutdown();
-      return;
-    }
-    if (written == in_flight_bytes_.size()) continue;
-    writing_ = true;
-    asio::async_write(
-        socket_, asio::buffer(in_flight_bytes_) + written,
-        [self = shared_from_this()](const boost::system::error_code& error, std::size_t) {
-          self->writing_ = false;
-          if (error) {
-            self->shutdown();
-            return;
-          }
-          self->write_next();
-        });
-  }
-}
-
 bool Session::join(SceneId id) {
   auto membership = std::make_shared<Membership>(weak_from_this(), id);
   auto scene = context_.scenes.join(id, {id_, client_name_, membership});
@@ -300,8 +232,7 @@ bool Session::join(SceneId id) {
   scene_ = std::move(scene);
   membership_ = std::move(membership);
   // a frame of the previous scene that has not gone out yet is dropped
-  drop_pending_frame();
-  frames_.restart();
+  frames_.show(scene_, scene_id_);
   scene_->prepare_haptics();
   announce(SceneEvent::Kind::kClientJoined);
   return true;
@@ -315,20 +246,12 @@ void Session::announce(SceneEvent::Kind kind) {
   scene_->members().broadcast(std::move(event));
 }
 
-void Session::drop_pending_frame() {
-  frame_pending_ = false;
-  pending_frame_.clear();
-  frame_encoding_ = false;
-  ++frame_generation_;
-}
-
 void Session::forget_scene() {
   close_proxies();
   membership_.reset();
   scene_.reset();
   scene_id_ = 0;
-  drop_pending_frame();
-  frames_.restart();
+  frames_.show(nullptr, 0);
 }
 
 void Session::leave_scene(bool quietly) {
@@ -342,7 +265,7 @@ void Session::leave_scene(bool quietly) {
 
 void Session::on_scene_event(SceneId scene, const SceneEvent& event) {
   // from a scene the session has left, or after its goodbye: nothing more
-  if (closed_ || closing_ || scene != scene_id_) return;
+  if (closed_ || outbound_.closing() || scene != scene_id_) return;
   v1::ServerMessage message;
   fill_event(scene, event, *message.mutable_event());
   send(message);
@@ -384,90 +307,8 @@ bool Session::close_proxy(std::uint32_t proxy_id) {
   return true;
 }
 
-void Session::subscribe_frames(const FrameOptions& options) {
-  frames_.start(options);
-  drop_pending_frame();
-  if (!timer_running_) {
-    timer_running_ = true;
-    on_frame_tick();
-  }
-}
-
-void Session::unsubscribe_frames() {
-  frames_.stop();
-  drop_pending_frame();
-  frame_timer_.cancel();
-  timer_running_ = false;
-}
-
-void Session::schedule_frame() {
-  frame_timer_.expires_after(
-      std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / frames_.options().rate_hz)));
-  frame_timer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
-    if (!ec && self->timer_running_) self->on_frame_tick();
-  });
-}
-
 void Session::forget_idle_proxy_surfaces(SteadyClock::time_point now) {
   for (auto& [id, proxy] : proxies_) proxy.forget_surface_if_idle(now, kProxyIdle);
-}
-
-void Session::on_frame_tick() {
-  if (closed_ || !frames_.active()) {
-    timer_running_ = false;
-    return;
-  }
-  forget_idle_proxy_surfaces(SteadyClock::now());
-  // a frame still with the encoder (a busy server) is the latest one: no other is planned
-  if (scene_ && !frame_encoding_) {
-    auto snapshot = scene_->latest();
-    if (frames_.has_new(*snapshot)) {
-      std::uint64_t skipped = 0;
-      if (frame_pending_) {
-        // the client has not taken the previous frame: it is dropped, and so are the triangles
-        // it carried, which the next frame must carry instead
-        skipped = pending_frame_skipped_ + 1;
-        frames_.dropped();
-        drop_pending_frame();
-        ++counters_.frames_skipped;
-      }
-      encode_frame(frames_.plan(std::move(snapshot), scene_id_, skipped));
-    }
-  }
-  schedule_frame();
-}
-
-void Session::encode_frame(FrameStream::Plan plan) {
-  frame_encoding_ = true;
-  asio::post(context_.frame_encoder, [weak = weak_from_this(), plan = std::move(plan),
-                                      generation = frame_generation_] {
-    v1::ServerMessage message;
-    FrameStream::FrameRecord record;
-    FrameStream::encode(plan, *message.mutable_frame(), record);
-    std::string bytes;
-    wire::append_message(bytes, message);
-    auto session = weak.lock();
-    if (!session) return;
-    // as for events: the reference moves into the handler, so that the session is never
-    // destroyed on this thread
-    const auto executor = session->socket_.get_executor();
-    asio::post(executor, [session = std::move(session), generation, skipped = plan.skipped,
-                          record = std::move(record), bytes = std::move(bytes)]() mutable {
-      session->on_frame_encoded(generation, skipped, std::move(record), std::move(bytes));
-    });
-  });
-}
-
-void Session::on_frame_encoded(std::uint64_t generation, std::uint64_t skipped,
-                               FrameStream::FrameRecord record, std::string bytes) {
-  // dropped while it was encoded (a new subscription, another scene, the connection's end)
-  if (generation != frame_generation_ || closed_ || closing_) return;
-  frame_encoding_ = false;
-  frames_.encoded(std::move(record));
-  pending_frame_ = std::move(bytes);
-  frame_pending_ = true;
-  pending_frame_skipped_ = skipped;
-  write_next();
 }
 
 }  // namespace felt::net

@@ -1,49 +1,31 @@
 #pragma once
-// One client connection. Everything a session does runs on its own strand: reads, dispatch,
-// writes, its frame timer and the events and late replies other threads post to it, so a
-// session needs no locks and one slow client cannot block another.
+// One client connection, over any transport (TCP, WebSocket). Everything a session does runs on
+// its transport's strand: reads, dispatch, writes, its frame timer and the events and late
+// replies other threads post to it, so a session needs no locks and one slow client cannot
+// block another. What it sends goes through its OutboundQueue, its frames through SessionFrames;
+// the session itself holds the greeting, the scene it is in and its proxies.
 
-#include <array>
+#include <atomic>
 #include <cstdint>
-#include <functional>
 #include <map>
 #include <memory>
 #include <string>
 
-#include <boost/asio.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/steady_timer.hpp>
 
 #include "felt/v1/envelope.pb.h"
-#include "net/frame_stream.hpp"
+#include "net/outbound_queue.hpp"
+#include "net/pending_reply.hpp"
 #include "net/server_context.hpp"
-#include "wire/frame_codec.hpp"
+#include "net/session_frames.hpp"
+#include "net/transport.hpp"
 
 namespace felt::net {
 
-class Session;
-
-/// A reply that comes later, from another thread (the loader, a scene's physics thread). Safe
-/// to use from any thread; the reply is sent on the session's strand, once. Holding one takes
-/// one of the session's requests in flight until it is sent.
-class PendingReply {
+class Session : public std::enable_shared_from_this<Session>, private OutboundQueue::Listener {
  public:
-  PendingReply(std::shared_ptr<Session> session, std::uint64_t request_id);
-  ~PendingReply();
-  PendingReply(const PendingReply&) = delete;
-  PendingReply& operator=(const PendingReply&) = delete;
-
-  std::uint64_t request_id() const { return request_id_; }
-  void send(felt::v1::ServerMessage message);
-  void fail(felt::v1::ErrorCode code, std::string message);
-
- private:
-  std::weak_ptr<Session> session_;
-  std::uint64_t request_id_;
-  std::atomic<bool> sent_{false};
-};
-
-class Session : public std::enable_shared_from_this<Session> {
- public:
-  Session(boost::asio::ip::tcp::socket socket, ServerContext& context);
+  Session(std::unique_ptr<Transport> transport, ServerContext& context);
   ~Session();
 
   /// Starts reading. The session keeps itself alive until the connection ends.
@@ -56,7 +38,10 @@ class Session : public std::enable_shared_from_this<Session> {
   void close_gracefully();
 
   /// Runs `task` on the session's strand, from any thread.
-  void post(std::function<void()> task);
+  template <class Task>
+  void post(Task&& task) {
+    boost::asio::post(transport_->executor(), std::forward<Task>(task));
+  }
 
   // The rest is for the request handlers, on the session's strand.
   ServerContext& context() { return context_; }
@@ -103,9 +88,9 @@ class Session : public std::enable_shared_from_this<Session> {
   void forget_idle_proxy_surfaces(SteadyClock::time_point now);
 
   /// Streams frames of the joined scene (again, from a key frame).
-  void subscribe_frames(const FrameOptions& options);
-  void unsubscribe_frames();
-  FrameStream& frames() { return frames_; }
+  void subscribe_frames(const FrameOptions& options) { frames_.subscribe(options); }
+  void unsubscribe_frames() { frames_.unsubscribe(); }
+  FrameStream& frames() { return frames_.stream(); }
 
   struct Counters {
     std::uint64_t requests = 0;
@@ -114,58 +99,50 @@ class Session : public std::enable_shared_from_this<Session> {
     std::uint64_t bytes_sent = 0;
     std::uint64_t bytes_received = 0;
   };
-  const Counters& counters() const { return counters_; }
+  Counters counters() const;
   std::size_t requests_in_flight() const { return in_flight_.load(); }
-  std::size_t queued_reply_bytes() const { return queued_replies_.size(); }
+  std::size_t queued_reply_bytes() const { return outbound_.queued_bytes(); }
 
  private:
   friend class PendingReply;
   class Membership;
 
+  /// A PendingReply was made; its reply came back (on the strand).
+  void begin_deferred() { ++in_flight_; }
+  void end_deferred(const felt::v1::ServerMessage& reply);
+
+  // OutboundQueue::Listener
+  void on_frame_written() override;
+  void on_connection_lost() override { shutdown(false); }
+  void on_drained() override { shutdown(true); }
+
+  /// Lets the outbound queue and the frames keep the session alive while they write or encode.
+  void hold_while_busy();
   void read();
   /// Closes the connection if it has not said Hello in time.
   void start_hello_deadline();
   void on_read(const boost::system::error_code& ec, std::size_t bytes);
-  /// Handles buffered requests, a bounded number per turn so that other sessions get theirs.
+  /// Handles received requests, a bounded number per turn so that other sessions get theirs.
   void process();
-  void write_next();
-  void schedule_frame();
-  void on_frame_tick();
-  /// Has the server's frame encoder encode `plan`; the frame comes back to on_frame_encoded.
-  void encode_frame(FrameStream::Plan plan);
-  void on_frame_encoded(std::uint64_t generation, std::uint64_t skipped,
-                        FrameStream::FrameRecord record, std::string bytes);
   void on_scene_event(SceneId scene, const SceneEvent& event);
-  void shutdown();
+  /// Ends the connection: after what was written (`gracefully`), or at once.
+  void shutdown(bool gracefully);
   /// Tells the others in the scene that this client joined or left.
   void announce(SceneEvent::Kind kind);
-  /// The frame waiting in the slot, or being encoded, is not sent.
-  void drop_pending_frame();
   /// Lets go of the scene: proxies, membership, frames (the registry is the caller's).
   void forget_scene();
   std::uint64_t key_of(std::uint32_t proxy_id) const;
   void close_proxies();
 
-  boost::asio::ip::tcp::socket socket_;
+  std::unique_ptr<Transport> transport_;
   ServerContext& context_;
   const ClientId id_;
-  wire::FrameDecoder decoder_;
-  std::array<std::uint8_t, 16 * 1024> read_buffer_;
-  Counters counters_;
+  std::uint64_t requests_ = 0;
+  std::uint64_t frames_sent_ = 0;
+  std::uint64_t bytes_received_ = 0;
   std::atomic<std::size_t> in_flight_{0};
-
-  /// replies and events not yet handed to the socket, back to back as they go on the wire:
-  /// they go out in one write, and cost their bytes and no allocation each
-  std::string queued_replies_;
-  std::string pending_frame_;  ///< latest-wins: a newer frame replaces one not yet written
-  bool frame_pending_ = false;
-  std::uint64_t pending_frame_skipped_ = 0;  ///< the `skipped` count the pending frame carries
-  bool frame_encoding_ = false;              ///< a frame is with the encoder: no other is planned
-  /// counts the frames dropped unsent: a frame encoded under an older count is not sent
-  std::uint64_t frame_generation_ = 0;
-  std::string in_flight_bytes_;  ///< the bytes async_write is sending
-  bool writing_ = false;
-  bool closing_ = false;  ///< a fatal error or goodbye was queued: close once it is written
+  OutboundQueue outbound_;
+  SessionFrames frames_;
   bool closed_ = false;
   bool counted_ = false;  ///< counted in context_.clients
 
@@ -177,10 +154,6 @@ class Session : public std::enable_shared_from_this<Session> {
   std::shared_ptr<SceneRunner> scene_;
   std::shared_ptr<Membership> membership_;  ///< how the scene reaches this session
   std::map<std::uint32_t, HapticProxy> proxies_;
-
-  boost::asio::steady_timer frame_timer_;
-  FrameStream frames_;
-  bool timer_running_ = false;
 };
 
 }  // namespace felt::net

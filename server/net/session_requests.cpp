@@ -99,7 +99,7 @@ void handle_get_stats(Session& session, std::uint64_t id) {
       out.set_servo_mean_tick_us(runner.servo.mean_tick_us);
     }
     v1::SessionStats& own = *stats.mutable_session();
-    const Session::Counters& counters = session.counters();
+    const Session::Counters counters = session.counters();
     own.set_client_id(session.client_id());
     own.set_requests(counters.requests);
     own.set_frames_sent(counters.frames_sent);

@@ -1,9 +1,10 @@
 // The real feltd against random requests: every request type of felt.v1, its fields filled at
 // random through protobuf's reflection (numbers extreme, NaN and infinite, unknown enum values,
 // ids that name nothing, names that climb out of the scene directory, scene JSON whole or cut,
-// long lists), sent over a few connections. Every request must get its reply or an Error with
-// its id, unless the server closed the connection after an Error with id 0 (a string that is
-// not UTF-8 does not parse); and at the end feltd still serves a new client as before.
+// long lists), sent over a few connections, over TCP and again over a WebSocket: bad input gets
+// the same answer on both. Every request must get its reply or an Error with its id, unless the
+// server closed the connection after an Error with id 0 (a string that is not UTF-8 does not
+// parse); and at the end feltd still serves a new client of either transport as before.
 //
 // The seed and the number of cases are fixed so that CI sends the same requests every time;
 // FELT_FUZZ_CASES and FELT_FUZZ_SEED send more, or others, by hand.
@@ -16,6 +17,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <google/protobuf/descriptor.h>
@@ -25,6 +27,7 @@
 #include "felt_client.hpp"
 #include "fuzz_settings.hpp"
 #include "protocol/feltd_process.hpp"
+#include "support/websocket_client.hpp"
 
 namespace felt::test {
 namespace {
@@ -179,11 +182,18 @@ class RandomRequests {
   std::mt19937_64 rng_;
 };
 
+/// The port of `server` that `Connection` speaks to.
+template <class Connection>
+std::uint16_t port_of(const FeltdProcess& server) {
+  return std::is_same_v<Connection, WebSocketClient> ? server.web_port() : server.port();
+}
+
 /// A connection that has said Hello; a new one when the server closed the last.
-std::unique_ptr<client::Client> connected(const FeltdProcess& server, int index) {
-  auto client = std::make_unique<client::Client>();
-  client->connect("127.0.0.1", server.port());
-  client->hello("fuzz-" + std::to_string(index));
+template <class Connection>
+std::unique_ptr<Connection> connected(const FeltdProcess& server, const std::string& name) {
+  auto client = std::make_unique<Connection>();
+  client->connect("127.0.0.1", port_of<Connection>(server));
+  client->hello(name);
   return client;
 }
 
@@ -191,7 +201,8 @@ std::unique_ptr<client::Client> connected(const FeltdProcess& server, int index)
 enum class Outcome { kSucceeded, kRefused, kConnectionClosed, kNoAnswer };
 
 /// Waits for the reply to `request_id`, skipping frames and events.
-Outcome await_reply(client::Client& client, std::uint64_t request_id) {
+template <class Connection>
+Outcome await_reply(Connection& client, std::uint64_t request_id) {
   const auto deadline = std::chrono::steady_clock::now() + 20s;
   while (std::chrono::steady_clock::now() < deadline) {
     std::optional<v1::ServerMessage> message;
@@ -213,24 +224,22 @@ Outcome await_reply(client::Client& client, std::uint64_t request_id) {
   return Outcome::kNoAnswer;
 }
 
-TEST(ProtocolFuzz, EveryRandomRequestIsAnsweredAndTheServerServesOnAfterward) {
-  FeltdProcess server({"--scene-dir", FELT_SCENE_DIR, "--scene",
-                       std::string(FELT_SCENE_DIR) + "/default.json", "--max-scenes", "6"});
+/// Sends the random requests over connections of type `Connection` (TCP or WebSocket).
+template <class Connection>
+void fuzz(FeltdProcess& server) {
   const FuzzSettings settings = fuzz_settings(300);
   RandomRequests requests(settings.seed);
   const std::uint64_t cases = settings.cases;
   constexpr int kConnections = 3;
-  std::vector<std::unique_ptr<client::Client>> clients;
-  for (int c = 0; c < kConnections; ++c) clients.push_back(connected(server, c));
+  std::vector<std::unique_ptr<Connection>> clients;
+  const auto name = [](int c) { return "fuzz-" + std::to_string(c); };
+  for (int c = 0; c < kConnections; ++c) clients.push_back(connected<Connection>(server, name(c)));
   // the largest request feltd takes (--max-frame-bytes), as its Welcome says
-  const std::uint64_t max_frame_bytes = [&] {
-    client::Client probe;
-    probe.connect("127.0.0.1", server.port());
-    return probe.hello("fuzz-limits").limits().max_frame_bytes();
-  }();
+  const std::uint64_t max_frame_bytes =
+      connected<Connection>(server, "fuzz-limits")->hello("fuzz-limits").limits().max_frame_bytes();
 
   int succeeded = 0, refused = 0, closed = 0;
-  for (std::uint64_t n = 0; n < cases && !HasFailure(); ++n) {
+  for (std::uint64_t n = 0; n < cases && !::testing::Test::HasFailure(); ++n) {
     const int c = static_cast<int>(n % kConnections);
     v1::ClientMessage message = requests.next();
     SCOPED_TRACE("case " + std::to_string(n) + ": " + message.ShortDebugString().substr(0, 2000));
@@ -242,7 +251,7 @@ TEST(ProtocolFuzz, EveryRandomRequestIsAnsweredAndTheServerServesOnAfterward) {
       id = clients[c]->send(message);
     } catch (const std::exception&) {
       ASSERT_TRUE(server.running());
-      clients[c] = connected(server, c);  // closed after an earlier request's reply
+      clients[c] = connected<Connection>(server, name(c));  // closed after an earlier reply
       try {
         id = clients[c]->send(message);
       } catch (const std::exception& e) {
@@ -259,7 +268,7 @@ TEST(ProtocolFuzz, EveryRandomRequestIsAnsweredAndTheServerServesOnAfterward) {
     if (outcome == Outcome::kRefused) ++refused;
     if (outcome == Outcome::kConnectionClosed) {
       ++closed;
-      clients[c] = connected(server, c);
+      clients[c] = connected<Connection>(server, name(c));
     }
   }
   std::cout << succeeded << " requests succeeded, " << refused << " were refused, " << closed
@@ -268,15 +277,37 @@ TEST(ProtocolFuzz, EveryRandomRequestIsAnsweredAndTheServerServesOnAfterward) {
   EXPECT_GT(succeeded + refused, static_cast<int>(cases) / 2);
   EXPECT_GT(succeeded, static_cast<int>(cases) / 20);
 
-  // a new client is served as before (the requests may have changed the shared default scene
-  // in any way, so not what it feels)
+  // a new client of either transport is served as before (the requests may have changed the
+  // shared default scene in any way, so not what it feels)
   client::Client after;
   after.connect("127.0.0.1", server.port());
   after.hello("after-the-fuzz");
   EXPECT_TRUE(after.stats().has_server());
   const v1::ForceUpdate touch = after.proxy_update(0, {0, 1.2, 0.01});
   EXPECT_TRUE(std::isfinite(touch.force().z()));
+  WebSocketClient browser;
+  browser.connect("127.0.0.1", server.web_port());
+  browser.hello("after-the-fuzz-over-a-websocket");
+  EXPECT_TRUE(browser.stats().has_server());
+  EXPECT_TRUE(std::isfinite(browser.proxy_update(0, {0, 1.2, 0.01}).force().z()));
   EXPECT_EQ(server.stop(SIGTERM, 10s), 0);
+}
+
+std::vector<std::string> fuzzed_server() {
+  return {"--scene-dir",  FELT_SCENE_DIR,
+          "--scene",      std::string(FELT_SCENE_DIR) + "/default.json",
+          "--max-scenes", "6",
+          "--web",        "127.0.0.1:0"};
+}
+
+TEST(ProtocolFuzz, EveryRandomRequestOverTcpIsAnsweredAndTheServerServesOnAfterward) {
+  FeltdProcess server(fuzzed_server());
+  fuzz<client::Client>(server);
+}
+
+TEST(ProtocolFuzz, EveryRandomRequestOverAWebSocketIsAnsweredAndTheServerServesOnAfterward) {
+  FeltdProcess server(fuzzed_server());
+  fuzz<WebSocketClient>(server);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <regex>
 #include <stdexcept>
 #include <thread>
@@ -37,9 +38,25 @@ FeltdProcess::FeltdProcess(const std::vector<std::string>& args, bool default_li
   stdout_fd_ = pipe_fds[0];
   if (spawned != 0) throw std::runtime_error("cannot start " FELTD_PATH);
 
-  // read the first line, with a deadline
   const auto deadline = std::chrono::steady_clock::now() + scaled(std::chrono::seconds(10));
-  while (first_line_.find('\n') == std::string::npos) {
+  first_line_ = read_line(deadline);
+  std::smatch match;
+  if (!std::regex_match(first_line_, match, std::regex(R"(listening on 127\.0\.0\.1:(\d+))"))) {
+    throw std::runtime_error("unexpected first line: " + first_line_);
+  }
+  port_ = static_cast<std::uint16_t>(std::stoi(match[1]));
+  // with --web, the web port is named on the next line
+  if (std::find(args.begin(), args.end(), "--web") == args.end()) return;
+  const std::string web_line = read_line(deadline);
+  if (!std::regex_match(web_line, match, std::regex(R"(web on http://127\.0\.0\.1:(\d+)/)"))) {
+    throw std::runtime_error("unexpected second line: " + web_line);
+  }
+  web_port_ = static_cast<std::uint16_t>(std::stoi(match[1]));
+}
+
+std::string FeltdProcess::read_line(std::chrono::steady_clock::time_point deadline) {
+  std::string line;
+  while (true) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     pollfd pfd{stdout_fd_, POLLIN, 0};
@@ -47,15 +64,10 @@ FeltdProcess::FeltdProcess(const std::vector<std::string>& args, bool default_li
       throw std::runtime_error("feltd printed no line in time");
     }
     char c;
-    if (read(stdout_fd_, &c, 1) != 1) throw std::runtime_error("feltd exited: " + first_line_);
-    first_line_.push_back(c);
+    if (read(stdout_fd_, &c, 1) != 1) throw std::runtime_error("feltd exited: " + line);
+    if (c == '\n') return line;
+    line.push_back(c);
   }
-  first_line_.pop_back();
-  std::smatch match;
-  if (!std::regex_match(first_line_, match, std::regex(R"(listening on 127\.0\.0\.1:(\d+))"))) {
-    throw std::runtime_error("unexpected first line: " + first_line_);
-  }
-  port_ = static_cast<std::uint16_t>(std::stoi(match[1]));
 }
 
 FeltdProcess::~FeltdProcess() {

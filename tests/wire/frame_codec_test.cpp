@@ -155,6 +155,28 @@ TEST(FrameCodec, SplitAtEveryByteBoundary) {
   }
 }
 
+TEST(FrameCodec, FirstFrameWalksFramesBackToBack) {
+  const std::vector<std::string> payloads = make_payloads();
+  const std::string stream = concatenated_frames(payloads);
+  std::string_view rest(stream);
+  for (const std::string& payload : payloads) {
+    const std::optional<FrameView> frame = first_frame(rest);
+    ASSERT_TRUE(frame);
+    EXPECT_EQ(frame->payload, payload);
+    rest.remove_prefix(frame->size);
+  }
+  EXPECT_TRUE(rest.empty());
+}
+
+TEST(FrameCodec, FirstFrameOfACutBufferIsNothing) {
+  std::string stream;
+  append_frame(stream, std::string(300, 'a'));
+  for (std::size_t k = 0; k < stream.size(); ++k) {
+    EXPECT_FALSE(first_frame(std::string_view(stream).substr(0, k))) << "cut at " << k;
+  }
+  EXPECT_FALSE(first_frame(std::string(11, '\xff')));  // no varint ends within 10 bytes
+}
+
 TEST(FrameCodec, OneByteAtATime) {
   const std::vector<std::string> payloads = make_payloads();
   const std::string stream = concatenated_frames(payloads);

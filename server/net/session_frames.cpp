@@ -1,0 +1,113 @@
+#include "net/session_frames.hpp"
+
+#include <boost/asio/post.hpp>
+
+#include "wire/message_codec.hpp"
+
+namespace felt::net {
+
+namespace asio = boost::asio;
+
+SessionFrames::SessionFrames(const Transport::Executor& strand, asio::thread_pool& encoder,
+                             OutboundQueue& outbound)
+    : strand_(strand), encoder_(encoder), outbound_(outbound), timer_(strand) {}
+
+void SessionFrames::subscribe(const FrameOptions& options) {
+  stream_.start(options);
+  drop_pending();
+  if (!timer_running_) {
+    timer_running_ = true;
+    tick();
+  }
+}
+
+void SessionFrames::unsubscribe() {
+  stream_.stop();
+  drop_pending();
+  timer_.cancel();
+  timer_running_ = false;
+}
+
+void SessionFrames::show(std::shared_ptr<SceneRunner> scene, SceneId id) {
+  scene_ = std::move(scene);
+  scene_id_ = id;
+  drop_pending();
+  stream_.restart();
+}
+
+void SessionFrames::drop_pending() {
+  outbound_.drop_frame();
+  encoding_ = false;
+  ++generation_;
+}
+
+void SessionFrames::stop() {
+  timer_.cancel();
+  timer_running_ = false;
+  scene_.reset();
+  drop_pending();
+}
+
+void SessionFrames::schedule() {
+  timer_.expires_after(
+      std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / stream_.options().rate_hz)));
+  timer_.async_wait([this, owner = owner_.lock()](const boost::system::error_code& ec) {
+    if (!ec && timer_running_) tick();
+  });
+}
+
+void SessionFrames::tick() {
+  if (!stream_.active() || outbound_.closing()) {
+    timer_running_ = false;
+    return;
+  }
+  if (housekeeping_) housekeeping_();
+  // a frame still with the encoder (a busy server) is the latest one: no other is planned
+  if (scene_ && !encoding_) {
+    auto snapshot = scene_->latest();
+    if (stream_.has_new(*snapshot)) {
+      std::uint64_t skipped = 0;
+      if (outbound_.frame_waiting()) {
+        // the client has not taken the previous frame: it is dropped, and so are the triangles
+        // it carried, which the next frame must carry instead
+        skipped = slot_skipped_ + 1;
+        stream_.dropped();
+        drop_pending();
+        ++skipped_;
+      }
+      encode(stream_.plan(std::move(snapshot), scene_id_, skipped));
+    }
+  }
+  schedule();
+}
+
+void SessionFrames::encode(FrameStream::Plan plan) {
+  encoding_ = true;
+  asio::post(encoder_, [this, owner = owner_, plan = std::move(plan), generation = generation_] {
+    felt::v1::ServerMessage message;
+    FrameStream::FrameRecord record;
+    FrameStream::encode(plan, *message.mutable_frame(), record);
+    std::string bytes;
+    wire::append_message(bytes, message);
+    auto session = owner.lock();
+    if (!session) return;
+    // the reference moves into the handler, so that the session is never destroyed on this
+    // thread
+    asio::post(strand_, [this, session = std::move(session), generation, skipped = plan.skipped,
+                         record = std::move(record), bytes = std::move(bytes)]() mutable {
+      encoded(generation, skipped, std::move(record), std::move(bytes));
+    });
+  });
+}
+
+void SessionFrames::encoded(std::uint64_t generation, std::uint64_t skipped,
+                            FrameStream::FrameRecord record, std::string bytes) {
+  // dropped while it was encoded (a new subscription, another scene, the connection's end)
+  if (generation != generation_ || outbound_.closing()) return;
+  encoding_ = false;
+  stream_.encoded(std::move(record));
+  slot_skipped_ = skipped;
+  outbound_.put_frame(std::move(bytes));
+}
+
+}  // namespace felt::net
