@@ -208,6 +208,7 @@ v1::Subscribed Client::subscribe_frames(const FrameSubscription& subscription) {
   subscribe->set_encoding(subscription.quantized ? v1::FRAME_ENCODING_QUANTIZED16
                                                  : v1::FRAME_ENCODING_FLOAT32);
   subscribe->set_deltas(subscription.deltas);
+  subscribe->set_scalars(subscription.scalars);
   return request(message, v1::ServerMessage::kSubscribed).subscribed();
 }
 

@@ -39,6 +39,7 @@ struct FrameSubscription {
   std::vector<std::uint32_t> body_ids;  ///< empty: every body
   bool quantized = false;               ///< 16-bit positions (and normals)
   bool deltas = false;                  ///< quantized only: changes against acknowledged frames
+  bool scalars = false;                 ///< a number per vertex: a cloth's strain
 };
 
 class Client {

@@ -57,12 +57,14 @@ std::expected<DecodedFrame, std::string> FrameAssembler::assemble(const v1::Fram
   out.sim_time = frame.sim_time();
   out.sequence = frame.sequence();
   out.skipped = frame.skipped();
+  out.proxies.assign(frame.proxies().begin(), frame.proxies().end());
   Kept kept;
   kept.sequence = frame.sequence();
   for (const v1::BodyFrame& body : frame.bodies()) {
     DecodedBody& decoded = out.bodies.emplace_back();
     decoded.body_id = body.body_id();
     decoded.name = body.name();
+    decoded.scalars.assign(body.scalars().begin(), body.scalars().end());
     if (body.triangles_size() > 0) {
       triangles_[body.body_id()].assign(body.triangles().begin(), body.triangles().end());
     }

@@ -17,8 +17,9 @@ namespace felt::client {
 struct DecodedBody {
   std::uint32_t body_id = 0;
   std::string name;
-  std::vector<float> positions;                           ///< x, y, z per vertex
-  std::vector<float> normals;                             ///< empty unless subscribed with normals
+  std::vector<float> positions;  ///< x, y, z per vertex
+  std::vector<float> normals;    ///< empty unless subscribed with normals
+  std::vector<float> scalars;    ///< one per vertex when subscribed with scalars (strain)
   const std::vector<std::uint32_t>* triangles = nullptr;  ///< three per triangle; null: unknown
 };
 
@@ -29,6 +30,7 @@ struct DecodedFrame {
   std::uint64_t sequence = 0;
   std::uint64_t skipped = 0;
   std::vector<DecodedBody> bodies;
+  std::vector<felt::v1::ProxyPresence> proxies;  ///< every proxy in the scene, own ones marked
 };
 
 class FrameAssembler {

@@ -122,11 +122,22 @@ bool write_vtp(std::ofstream& out, const DecodedFrame& frame) {
     const std::size_t triangles = body.triangles ? body.triangles->size() / 3 : 0;
     out << "<Piece Name=\"" << xml_escaped(body.name) << "\" NumberOfPoints=\""
         << vertex_count(body) << "\" NumberOfPolys=\"" << triangles << "\">\n";
-    if (has_normals(body)) {
-      out << "<PointData Normals=\"Normals\"><DataArray type=\"Float32\" Name=\"Normals\" "
-             "NumberOfComponents=\"3\" format=\"ascii\">\n";
-      for (float n : body.normals) out << n << " ";
-      out << "\n</DataArray></PointData>\n";
+    const bool scalars = body.scalars.size() == vertex_count(body);
+    if (has_normals(body) || scalars) {
+      out << "<PointData" << (has_normals(body) ? " Normals=\"Normals\"" : "")
+          << (scalars ? " Scalars=\"strain\"" : "") << ">\n";
+      if (has_normals(body)) {
+        out << "<DataArray type=\"Float32\" Name=\"Normals\" NumberOfComponents=\"3\" "
+               "format=\"ascii\">\n";
+        for (float n : body.normals) out << n << " ";
+        out << "\n</DataArray>\n";
+      }
+      if (scalars) {
+        out << "<DataArray type=\"Float32\" Name=\"strain\" format=\"ascii\">\n";
+        for (float s : body.scalars) out << s << " ";
+        out << "\n</DataArray>\n";
+      }
+      out << "</PointData>\n";
     }
     out << "<Points><DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     for (float x : body.positions) out << x << " ";

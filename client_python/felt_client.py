@@ -136,10 +136,12 @@ class Client:
         source = {"name": name} if name is not None else {"json": json}
         return self.request(load_scene=scene_pb2.LoadScene(shared=shared, keep=keep, **source))
 
-    def subscribe_frames(self, max_rate_hz=0.0, normals=False, body_ids=()):
-        """Starts the frame stream (float32 positions); take frames with next_frame()."""
+    def subscribe_frames(self, max_rate_hz=0.0, normals=False, body_ids=(), scalars=False):
+        """Starts the frame stream (float32 positions; with `scalars`, a cloth's strain per
+        vertex in BodyFrame.scalars); take frames with next_frame(). Every frame also lists the
+        scene's proxies (Frame.proxies), each with its client's name."""
         return self.request(subscribe_frames=frames_pb2.SubscribeFrames(
-            max_rate_hz=max_rate_hz, normals=normals, body_ids=body_ids))
+            max_rate_hz=max_rate_hz, normals=normals, body_ids=body_ids, scalars=scalars))
 
     def proxy_update(self, proxy_id, position, buttons=0):
         """Moves haptic proxy `proxy_id` (opened on first use) to `position` (x, y, z) in metres;

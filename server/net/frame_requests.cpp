@@ -46,6 +46,7 @@ void handle_subscribe(Session& session, std::uint64_t id, const v1::SubscribeFra
   options.bodies = std::move(wanted);
   options.quantized = quantized;
   options.deltas = subscribe.deltas();
+  options.scalars = subscribe.scalars();
   session.subscribe_frames(options);
   reply(session, id, [&](v1::ServerMessage& message) {
     v1::Subscribed& subscribed = *message.mutable_subscribed();

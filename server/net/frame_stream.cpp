@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include "core/cloth/vertex_strain.hpp"
+#include "net/wire_convert.hpp"
+
 namespace felt::net {
 namespace {
 
@@ -140,6 +143,7 @@ void FrameStream::encode(const Plan& plan, felt::v1::Frame& frame, FrameRecord& 
   frame.set_skipped(plan.skipped);
   frame.set_sequence(plan.sequence);
   if (plan.base) frame.set_base_sequence(plan.base->sequence);
+  put_proxies(plan.proxies, frame);
   for (const BodySnapshot& body : snapshot.bodies) {
     if (!wanted(options, body.body_id)) continue;
     felt::v1::BodyFrame* out = frame.add_bodies();
@@ -155,6 +159,11 @@ void FrameStream::encode(const Plan& plan, felt::v1::Frame& frame, FrameRecord& 
       put_floats(body.positions, *out->mutable_positions());
       if (options.normals) put_floats(body.normals, *out->mutable_normals());
     }
+    if (options.scalars && body.cloth) {
+      thread_local std::vector<float> strain;
+      vertex_strain(*body.cloth, body.positions, strain);
+      out->mutable_scalars()->Assign(strain.begin(), strain.end());
+    }
     if (std::find(plan.with_triangles.begin(), plan.with_triangles.end(), body.body_id) !=
         plan.with_triangles.end()) {
       auto& triangles = *out->mutable_triangles();
@@ -163,6 +172,23 @@ void FrameStream::encode(const Plan& plan, felt::v1::Frame& frame, FrameRecord& 
         for (std::uint32_t corner : t) triangles.AddAlreadyReserved(corner);
       }
     }
+  }
+}
+
+void FrameStream::put_proxies(const std::vector<ProxyView>& proxies, felt::v1::Frame& frame) {
+  for (const ProxyView& proxy : proxies) {
+    felt::v1::ProxyPresence& out = *frame.add_proxies();
+    out.set_client_id(proxy.client);
+    out.set_client_name(proxy.client_name);
+    out.set_proxy_id(proxy.proxy_id);
+    out.set_own(proxy.own);
+    const ProxyPresenceEntry& state = proxy.state;
+    put_vec3(state.position, *out.mutable_position());
+    out.set_radius(state.radius);
+    out.set_in_contact(state.in_contact);
+    put_vec3(state.force, *out.mutable_force());
+    if (state.in_contact) put_vec3(state.contact_point, *out.mutable_contact_point());
+    out.set_grabbing(state.grabbing);
   }
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "felt/v1/frames.pb.h"
+#include "runtime/proxy_presence.hpp"
 #include "runtime/scene_registry.hpp"
 #include "runtime/snapshot.hpp"
 #include "wire/vector_quantizer.hpp"
@@ -22,7 +23,17 @@ struct FrameOptions {
   bool normals = false;
   std::vector<BodyId> bodies;  ///< only these, sorted (empty: all)
   bool quantized = false;
-  bool deltas = false;  ///< quantized only
+  bool deltas = false;   ///< quantized only
+  bool scalars = false;  ///< a number per vertex: a cloth's strain
+};
+
+/// A proxy as a frame shows it to one subscriber.
+struct ProxyView {
+  ClientId client = 0;
+  std::string client_name;
+  std::uint32_t proxy_id = 0;
+  bool own = false;  ///< the subscriber's
+  ProxyPresenceEntry state;
 };
 
 class FrameStream {
@@ -69,6 +80,7 @@ class FrameStream {
     FrameOptions options;
     std::shared_ptr<const FrameRecord> base;  ///< the deltas' base; null: values
     std::vector<BodyId> with_triangles;       ///< the bodies whose triangles this frame carries
+    std::vector<ProxyView> proxies;           ///< the scene's proxies now
   };
   /// Plans the next frame from `snapshot`; `skipped` frames were dropped before it. The frame
   /// counts as built from here on (has_new, dropped).
@@ -76,6 +88,8 @@ class FrameStream {
   /// Encodes `plan` as `frame`, and what later deltas need of it as `record`. Touches no
   /// stream: any thread.
   static void encode(const Plan& plan, felt::v1::Frame& frame, FrameRecord& record);
+  /// Puts `proxies` into `frame`.
+  static void put_proxies(const std::vector<ProxyView>& proxies, felt::v1::Frame& frame);
   /// The frame planned last was encoded as `record`.
   void encoded(FrameRecord record) { building_ = std::move(record); }
   /// plan, encode and encoded in a row.

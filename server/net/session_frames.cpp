@@ -8,9 +8,16 @@ namespace felt::net {
 
 namespace asio = boost::asio;
 
-SessionFrames::SessionFrames(const Transport::Executor& strand, asio::thread_pool& encoder,
-                             OutboundQueue& outbound)
-    : strand_(strand), encoder_(encoder), outbound_(outbound), timer_(strand) {}
+namespace {
+
+/// A proxy not updated for this long is not shown to the others.
+constexpr auto kPresenceWindow = std::chrono::seconds(1);
+
+}  // namespace
+
+SessionFrames::SessionFrames(ClientId client, const Transport::Executor& strand,
+                             asio::thread_pool& encoder, OutboundQueue& outbound)
+    : client_(client), strand_(strand), encoder_(encoder), outbound_(outbound), timer_(strand) {}
 
 void SessionFrames::subscribe(const FrameOptions& options) {
   stream_.start(options);
@@ -75,10 +82,22 @@ void SessionFrames::tick() {
         drop_pending();
         ++skipped_;
       }
-      encode(stream_.plan(std::move(snapshot), scene_id_, skipped));
+      FrameStream::Plan plan = stream_.plan(std::move(snapshot), scene_id_, skipped);
+      plan.proxies = proxies();
+      encode(std::move(plan));
     }
   }
   schedule();
+}
+
+std::vector<ProxyView> SessionFrames::proxies() const {
+  std::vector<ProxyView> out;
+  for (const ProxyPresenceEntry& entry : scene_->presence(kPresenceWindow)) {
+    const auto client = static_cast<ClientId>(entry.key >> 32);
+    out.push_back({client, scene_->members().name_of(client),
+                   static_cast<std::uint32_t>(entry.key & 0xffffffffu), client == client_, entry});
+  }
+  return out;
 }
 
 void SessionFrames::encode(FrameStream::Plan plan) {

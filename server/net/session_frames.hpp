@@ -19,8 +19,9 @@ namespace felt::net {
 
 class SessionFrames {
  public:
-  SessionFrames(const Transport::Executor& strand, boost::asio::thread_pool& encoder,
-                OutboundQueue& outbound);
+  /// Frames for client `client`, whose own proxies they mark.
+  SessionFrames(ClientId client, const Transport::Executor& strand,
+                boost::asio::thread_pool& encoder, OutboundQueue& outbound);
   /// `owner` (the session) is kept alive while a tick or an encoding is under way.
   void set_owner(std::weak_ptr<void> owner) { owner_ = std::move(owner); }
   /// Runs on every tick, before the frame is planned (the session's housekeeping).
@@ -44,12 +45,15 @@ class SessionFrames {
 
  private:
   void schedule();
+  /// The scene's proxies as this client sees them.
+  std::vector<ProxyView> proxies() const;
   void tick();
   /// Has the encoder encode `plan`; its bytes come back to encoded().
   void encode(FrameStream::Plan plan);
   void encoded(std::uint64_t generation, std::uint64_t skipped, FrameStream::FrameRecord record,
                std::string bytes);
 
+  const ClientId client_;
   Transport::Executor strand_;
   boost::asio::thread_pool& encoder_;
   OutboundQueue& outbound_;

@@ -97,6 +97,15 @@ void handle_get_stats(Session& session, std::uint64_t id) {
       out.set_particles(bodies->particles());
       out.set_servo_ticks(runner.servo.ticks);
       out.set_servo_mean_tick_us(runner.servo.mean_tick_us);
+      for (const BodyStats& body : runner.bodies) {
+        v1::BodyStats& entry = *out.add_body_stats();
+        entry.set_body_id(body.body_id);
+        entry.set_kind(body.kind);
+        entry.set_integrator(body.integrator);
+        entry.set_max_strain(body.max_strain);
+        entry.set_volume_ratio(body.volume_ratio);
+        entry.set_kinetic_energy(body.kinetic_energy);
+      }
     }
     v1::SessionStats& own = *stats.mutable_session();
     const Session::Counters counters = session.counters();

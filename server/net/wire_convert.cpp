@@ -106,6 +106,31 @@ void fill_body_info(const BodyInfo& body, v1::BodyInfo& out) {
   out.set_triangles(body.triangles);
   out.set_owner(body.owner);
   out.set_nodes(body.nodes);
+  if (body.collider) fill_collider(*body.collider, *out.mutable_collider());
+}
+
+void fill_collider(const Collider& collider, v1::ColliderShape& out) {
+  switch (collider.shape) {
+    case Collider::Shape::kPlane:
+      out.set_kind(v1::COLLIDER_KIND_PLANE);
+      put_vec3(collider.normal, *out.mutable_normal());
+      break;
+    case Collider::Shape::kSphere:
+      out.set_kind(v1::COLLIDER_KIND_SPHERE);
+      out.set_radius(collider.radius);
+      break;
+    case Collider::Shape::kBox:
+      out.set_kind(v1::COLLIDER_KIND_BOX);
+      put_vec3(collider.half_extents, *out.mutable_half_extents());
+      break;
+    case Collider::Shape::kCapsule:
+      out.set_kind(v1::COLLIDER_KIND_CAPSULE);
+      put_vec3(collider.end, *out.mutable_end());
+      out.set_radius(collider.radius);
+      break;
+  }
+  put_vec3(collider.center, *out.mutable_center());
+  out.set_friction(collider.friction);
 }
 
 void fill_event(SceneId scene, const SceneEvent& event, v1::SceneEvent& out) {

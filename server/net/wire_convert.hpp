@@ -19,6 +19,7 @@ void fill_error(std::uint64_t request_id, felt::v1::ErrorCode code, const std::s
 felt::v1::ErrorCode error_code(RunnerError::Code code);
 
 void fill_body_info(const BodyInfo& body, felt::v1::BodyInfo& out);
+void fill_collider(const Collider& collider, felt::v1::ColliderShape& out);
 void fill_event(SceneId scene, const SceneEvent& event, felt::v1::SceneEvent& out);
 void fill_status(SceneId scene, const SceneStatus& status, felt::v1::SceneStatus& out);
 void fill_proxy_settings(const ProxySettings& settings, felt::v1::ProxySettings& out);

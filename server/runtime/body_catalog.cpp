@@ -37,6 +37,7 @@ BodyInfo describe_body(const World& world, BodyId id, ClientId owner) {
   } else {
     info.name = "collider" + std::to_string(id);
     info.kind = "collider";
+    info.collider = world.colliders()[world.body_ref(id).index];
   }
   return info;
 }

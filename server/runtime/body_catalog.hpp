@@ -24,6 +24,7 @@ struct BodyInfo {
   std::uint32_t nodes = 0;  ///< what pins and states index: a cloth's particles, a solid's nodes
   ClientId owner = 0;       ///< the client that added it (the scene's loader for its own bodies)
   std::optional<SolidModel> solid_model;  ///< a solid's model (which integrators apply)
+  std::optional<Collider> collider;       ///< a collider's shape and place
 };
 
 struct BodyCatalog {

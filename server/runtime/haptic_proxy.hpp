@@ -30,6 +30,7 @@ class HapticProxy {
   HapticProxy(std::uint64_t key, const ProxySettings& settings) : key_(key), settings_(settings) {}
 
   std::uint64_t key() const { return key_; }
+  const ProxySettings& settings() const { return settings_; }
 
   /// One update with the device at `device` and its `buttons`, against `surface` as rendered
   /// now, `dt` seconds after the previous update (0: unknown); the reaction on the touched body

@@ -31,6 +31,14 @@ bool SceneMembers::contains(ClientId client) const {
                      [client](const Member& m) { return m.client == client; });
 }
 
+std::string SceneMembers::name_of(ClientId client) const {
+  std::lock_guard lock(mutex_);
+  for (const Member& m : members_) {
+    if (m.client == client) return m.name;
+  }
+  return {};
+}
+
 void SceneMembers::broadcast(SceneEvent event) {
   send(event, true);
 }

@@ -30,6 +30,8 @@ class SceneMembers {
   void leave(ClientId client);
   std::size_t count() const;
   bool contains(ClientId client) const;
+  /// The name `client` joined with (empty when it is not a member).
+  std::string name_of(ClientId client) const;
   /// Gives `event` the scene's next sequence number and sends it to every member except
   /// `event.client` (which has its reply).
   void broadcast(SceneEvent event);

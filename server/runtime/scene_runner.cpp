@@ -420,6 +420,9 @@ ProxyOutput SceneRunner::render(HapticProxy& proxy, const Vec3& device, std::uin
   const ProxyOutput out =
       proxy.update(frame->surface(now), proxy.seconds_since_last(now), device, buttons, reactions_);
   haptic_updates_.fetch_add(1, std::memory_order_relaxed);
+  const HapticContact& contact = out.contact;
+  presence_.update({proxy.key(), contact.proxy, proxy.settings().radius, contact.in_contact,
+                    contact.force, contact.contact_point, out.grabbing, now});
   return out;
 }
 
@@ -575,6 +578,9 @@ void SceneRunner::run(std::stop_token stop) {
 
     const Clock::time_point after = clock_.now();
     {
+      // measured before the lock, which GetStats on a network thread waits for
+      std::vector<BodyStats> bodies =
+          window.full(after) ? body_stats(world) : std::vector<BodyStats>();
       std::lock_guard lock(stats_mutex_);
       stats_.steps = world.step_count();
       stats_.sim_time = world.time();
@@ -585,6 +591,7 @@ void SceneRunner::run(std::stop_token stop) {
       if (const auto rates = window.close_if_full(after, world.time())) {
         stats_.real_time_factor = rates->real_time_factor;
         stats_.ms_per_step = rates->ms_per_step;
+        stats_.bodies = std::move(bodies);
       }
     }
 

@@ -19,6 +19,7 @@
 
 #include "core/world/world_state.hpp"
 #include "runtime/body_catalog.hpp"
+#include "runtime/body_stats.hpp"
 #include "runtime/clock.hpp"
 #include "runtime/command_queue.hpp"
 #include "runtime/haptic_frame.hpp"
@@ -26,6 +27,7 @@
 #include "runtime/haptic_servo.hpp"
 #include "runtime/health_events.hpp"
 #include "runtime/pacer.hpp"
+#include "runtime/proxy_presence.hpp"
 #include "runtime/published.hpp"
 #include "runtime/reaction_accumulator.hpp"
 #include "runtime/runner_error.hpp"
@@ -49,7 +51,8 @@ struct RunnerStats {
   std::uint64_t unrecoverable_steps = 0;
   bool paused = false;
   double time_scale = 1;
-  ServoStats servo;  ///< of the scene's scripted devices, if it has any
+  ServoStats servo;               ///< of the scene's scripted devices, if it has any
+  std::vector<BodyStats> bodies;  ///< the cloths and solids, as of the last window
 };
 
 /// Who may do what in a scene, fixed when it is created.
@@ -173,7 +176,14 @@ class SceneRunner {
   /// one thread at a time.
   ProxyOutput render(HapticProxy& proxy, const Vec3& device, std::uint32_t buttons);
   /// Forgets a closed proxy's pending reaction.
-  void close_proxy(const HapticProxy& proxy) { reactions_.forget(proxy.key()); }
+  void close_proxy(const HapticProxy& proxy) {
+    reactions_.forget(proxy.key());
+    presence_.forget(proxy.key());
+  }
+  /// The proxies rendered in the last `within`, as everyone in the scene may see them.
+  std::vector<ProxyPresenceEntry> presence(std::chrono::steady_clock::duration within) const {
+    return presence_.since(std::chrono::steady_clock::now() - within);
+  }
   /// The surfaces proxies render against (made now from the latest snapshot if no proxy was
   /// used lately, after which the physics thread keeps them up to date).
   std::shared_ptr<const HapticFrame> haptic_frame();
@@ -269,6 +279,7 @@ class SceneRunner {
   std::vector<std::shared_ptr<HapticFrame>> haptic_pool_;
   std::mutex haptic_mutex_;  ///< held while a haptic frame is made
   /// steady-clock ticks of the latest render (or prepare_haptics)
+  ProxyPresence presence_;
   std::atomic<SteadyClock::rep> last_render_{0};
 
   std::unique_ptr<HapticServo> servo_;  ///< null without scripted devices

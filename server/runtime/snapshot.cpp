@@ -37,6 +37,7 @@ std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnap
       const ClothBody& body = world.cloths()[ref.index];
       out.name = body.name();
       out.surface = SharedTriangles(body.shared_model(), &body.model().triangles);
+      out.cloth = body.shared_model();
       out.positions = body.state().x;
     } else {
       const SolidBody& body = world.solids().bodies()[ref.index];

@@ -19,6 +19,9 @@ struct BodySnapshot {
   std::shared_ptr<const std::vector<Triangle>> surface;
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;  ///< per vertex
+  /// a cloth's model (springs and rest lengths), shared, for the strain clients may ask for;
+  /// null for a solid
+  std::shared_ptr<const ClothModel> cloth;
 
   const std::vector<Triangle>& triangles() const { return *surface; }
 };

@@ -13,8 +13,8 @@ void StatsWindow::add_step(Clock::duration took) {
 }
 
 std::optional<StepRates> StatsWindow::close_if_full(Clock::time_point now, double sim_time) {
+  if (!full(now)) return std::nullopt;
   const double window = Seconds(now - start_).count();
-  if (window < Seconds(kLength).count()) return std::nullopt;
   StepRates rates;
   rates.real_time_factor = (sim_time - sim_start_) / window;
   rates.ms_per_step = steps_ ? 1e3 * Seconds(stepping_).count() / static_cast<double>(steps_) : 0;

@@ -24,6 +24,8 @@ class StatsWindow {
 
   /// One step, which took `took`.
   void add_step(Clock::duration took);
+  /// Whether the window is kLength long at `now`.
+  bool full(Clock::time_point now) const { return now - start_ >= kLength; }
   /// The window's rates once it is at least kLength long, and then a new window from `now`
   /// with the scene at `sim_time`; nothing before.
   std::optional<StepRates> close_if_full(Clock::time_point now, double sim_time);

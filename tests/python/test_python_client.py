@@ -112,6 +112,31 @@ def test_garbage(client, port):
     client.get_stats()  # the other connection still works
 
 
+def test_viewer_additions(client, port):
+    """Besides the vertices, a viewer sees the others' proxies with their names, and a cloth's
+    strain per vertex when it asks; the body's statistics name its integrator."""
+    with Client("127.0.0.1", port, timeout=TIMEOUT) as other:
+        other.hello("other-viewer")
+        client.subscribe_frames(max_rate_hz=60, scalars=True)
+        deadline = time.monotonic() + TIMEOUT
+        seen = None
+        while seen is None and time.monotonic() < deadline:
+            other.proxy_update(3, (0.0, 1.2, 0.01))  # pressing into the curtain, 1 kHz or so
+            frame = client.next_frame(deadline - time.monotonic())
+            seen = next((p for p in frame.proxies if p.client_name == "other-viewer"), None)
+        expect(seen is not None, "no frame showed the other client's proxy")
+        expect(seen.proxy_id == 3 and not seen.own and seen.in_contact, f"the proxy: {seen}")
+        expect(seen.force.z > 1, f"its force: {seen.force}")
+        curtain = next(body for body in frame.bodies if body.body_id == 0)
+        expect(len(curtain.scalars) == 400, f"{len(curtain.scalars)} scalars")
+        # hanging from two corners under its weight, every spring is stretched a little
+        expect(all(math.isfinite(s) for s in curtain.scalars) and max(curtain.scalars) > 0,
+               f"strain {min(curtain.scalars)} .. {max(curtain.scalars)}")
+    client.request(unsubscribe_frames={})
+    body = client.get_stats().scene.body_stats[0]
+    expect(body.kind == "cloth" and body.integrator, f"body statistics: {body}")
+
+
 def test_stats(client, port):
     stats = client.get_stats()
     expect(stats.HasField("scene"), "no scene in the stats")
@@ -138,7 +163,8 @@ def main():
             with Client("127.0.0.1", port, timeout=TIMEOUT) as client:
                 client.hello("python-test")
                 for test in (test_welcome, test_hello_required, test_list_scenes, test_frames,
-                             test_touch, test_nan_position, test_garbage, test_stats):
+                             test_touch, test_nan_position, test_garbage,
+                             test_viewer_additions, test_stats):
                     test(client, port)
                     print("ok", test.__name__)
                 test_shutdown(client, port, process)

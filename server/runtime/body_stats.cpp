@@ -1,0 +1,26 @@
+#include "runtime/body_stats.hpp"
+
+namespace felt {
+
+std::vector<BodyStats> body_stats(const World& world) {
+  std::vector<BodyStats> out;
+  for (BodyId id : world.body_ids()) {
+    const BodyRef& ref = world.body_ref(id);
+    if (ref.kind == BodyRef::Kind::kCloth) {
+      const ClothBody& cloth = world.cloths()[ref.index];
+      out.push_back({id, "cloth", std::string(cloth.integrator().name()), cloth.max_strain(), 1,
+                     cloth.kinetic_energy()});
+    } else if (ref.kind == BodyRef::Kind::kSolid) {
+      const SolidBody& solid = world.solids().bodies()[ref.index];
+      const Integrator* integrator = solid.integrator();
+      const std::string update = solid.material().model == SolidModel::kShapeMatching
+                                     ? "shape_matching"
+                                     : std::string(kTimeCorrectedVerlet);
+      out.push_back({id, "solid", integrator ? std::string(integrator->name()) : update, 0,
+                     solid.volume() / solid.rest_volume(), solid.kinetic_energy()});
+    }
+  }
+  return out;
+}
+
+}  // namespace felt

@@ -1,0 +1,140 @@
+// What a viewer gets besides the vertices: the colliders' shapes in the body catalog, every
+// proxy of the scene in the frames with its client's name (its own marked), a cloth's strain per
+// vertex when asked, and each body's integrator and strain in GetStats.
+
+#include <cmath>
+#include <thread>
+
+#include "feltd_fixture.hpp"
+
+namespace felt::test {
+namespace {
+
+const v1::BodyInfo* find_collider(const v1::SceneLoaded& scene, v1::ColliderKind kind) {
+  for (const v1::BodyInfo& body : scene.bodies()) {
+    if (body.kind() == "collider" && body.has_collider() && body.collider().kind() == kind) {
+      return &body;
+    }
+  }
+  return nullptr;
+}
+
+TEST_F(FeltdTest, CollidersAreDescribedWithTheirShapes) {
+  auto client = greeted("viewer");
+  const v1::SceneLoaded scene = client->load_scene_by_name("cloth_on_ball");
+  // the scene file: a floor through the origin facing up, a ball of 0.3 m at (0, 0.3, 0)
+  const v1::BodyInfo* floor = find_collider(scene, v1::COLLIDER_KIND_PLANE);
+  ASSERT_TRUE(floor);
+  EXPECT_EQ(floor->collider().normal().y(), 1.0);
+  EXPECT_EQ(floor->collider().center().y(), 0.0);
+  EXPECT_EQ(floor->collider().friction(), 0.5);
+  const v1::BodyInfo* ball = find_collider(scene, v1::COLLIDER_KIND_SPHERE);
+  ASSERT_TRUE(ball);
+  EXPECT_EQ(ball->collider().radius(), 0.3);
+  EXPECT_EQ(ball->collider().center().y(), 0.3);
+  // the sheet is no collider; a collider added later is described in its reply and its event
+  EXPECT_FALSE(scene.bodies(0).has_collider());
+  auto other = greeted("other");
+  other->join_scene(scene.scene_id());
+  const v1::BodyAdded box = client->add_collider(
+      R"({"type": "box", "center": [1, 0.5, 0], "half_extents": [0.1, 0.2, 0.3]})");
+  EXPECT_EQ(box.body().collider().kind(), v1::COLLIDER_KIND_BOX);
+  EXPECT_EQ(box.body().collider().half_extents().z(), 0.3);
+  const auto added = other->wait_event(v1::EVENT_KIND_BODY_ADDED, 5s);
+  ASSERT_TRUE(added);
+  EXPECT_EQ(added->bodies(0).collider().center().x(), 1.0);
+}
+
+/// The next frame whose proxies hold one of client `name`, or nothing within 5 s, while
+/// `touch` keeps that client's proxy pressed into the curtain.
+template <class Touch>
+std::optional<v1::ProxyPresence> presence_of(Client& viewer, const std::string& name, Touch touch) {
+  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  while (std::chrono::steady_clock::now() < deadline) {
+    touch();
+    const auto frame = viewer.next_frame(100ms);
+    if (!frame) continue;
+    for (const v1::ProxyPresence& proxy : frame->proxies()) {
+      if (proxy.client_name() == name) return proxy;
+    }
+  }
+  return std::nullopt;
+}
+
+TEST_F(FeltdTest, FramesShowEveryClientsProxiesByName) {
+  auto alice = greeted("alice");
+  auto bob = greeted("bob");
+  alice->subscribe_frames(120);
+  bob->subscribe_frames(120);
+  const auto bob_touches = [&] { bob->proxy_update(7, {0, 1.2, 0.01}); };
+  const auto seen = presence_of(*alice, "bob", bob_touches);
+  ASSERT_TRUE(seen);
+  EXPECT_EQ(seen->proxy_id(), 7u);
+  EXPECT_FALSE(seen->own());
+  EXPECT_TRUE(seen->in_contact());
+  EXPECT_NEAR(seen->force().z(), 4.0, 1.0);       // the README's touch: ~4 N along +z
+  EXPECT_NEAR(seen->position().z(), 0.02, 0.01);  // the god-object rests on the curtain
+  EXPECT_GT(seen->radius(), 0.0);
+  // bob sees his own, marked as his
+  const auto own = presence_of(*bob, "bob", bob_touches);
+  ASSERT_TRUE(own);
+  EXPECT_TRUE(own->own());
+  // a closed proxy is gone from the frames
+  bob->close_proxy(7);
+  alice->next_frame(1s);
+  bool gone = false;
+  for (int i = 0; i < 20 && !gone; ++i) {
+    const auto frame = alice->next_frame(1s);
+    gone = frame && frame->proxies_size() == 0;
+  }
+  EXPECT_TRUE(gone);
+}
+
+TEST_F(FeltdTest, ScalarsAreAClothsStrainPerVertexOnlyWhenAsked) {
+  auto client = greeted("viewer");
+  client::FrameSubscription subscription;
+  subscription.quantized = true;
+  subscription.deltas = true;
+  subscription.scalars = true;
+  client->subscribe_frames(subscription);
+  const auto frame = client->next_frame(5s);
+  ASSERT_TRUE(frame);
+  const v1::BodyFrame& curtain = frame->bodies(0);
+  ASSERT_EQ(curtain.scalars_size(), 400);
+  float largest = 0;
+  for (float s : curtain.scalars()) {
+    ASSERT_TRUE(std::isfinite(s));
+    largest = std::max(largest, s);
+  }
+  // hanging from two corners it is stretched, a few percent
+  EXPECT_GT(largest, 0.0f);
+  EXPECT_LT(largest, 0.5f);
+  client->subscribe_frames(60);
+  const auto plain = client->next_frame(5s);
+  ASSERT_TRUE(plain);
+  EXPECT_EQ(plain->bodies(0).scalars_size(), 0);
+}
+
+TEST_F(FeltdTest, StatsNameEachBodysIntegratorAndStrain) {
+  auto client = greeted("steerer");
+  v1::SetBodyParameters set;
+  set.set_body_id(0);
+  set.set_integrator("rk4");
+  client->set_body_parameters(set);
+  // statistics are measured every half second
+  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  v1::BodyStats body;
+  while (std::chrono::steady_clock::now() < deadline) {
+    const auto stats = client->stats();
+    if (stats.scene().body_stats_size() > 0) body = stats.scene().body_stats(0);
+    if (body.integrator() == "rk4") break;
+    std::this_thread::sleep_for(50ms);
+  }
+  EXPECT_EQ(body.integrator(), "rk4");
+  EXPECT_EQ(body.kind(), "cloth");
+  EXPECT_GT(body.max_strain(), 0.0);
+  EXPECT_GT(body.kinetic_energy(), -1e-12);
+}
+
+}  // namespace
+}  // namespace felt::test
