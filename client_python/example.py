@@ -1,6 +1,9 @@
 """Says hello to feltd, watches the hanging curtain of the default scene and touches it.
 
-    python3 example.py --server 127.0.0.1:7450
+    mkdir -p /tmp/pygen && protoc -I protocol --python_out=/tmp/pygen protocol/felt/v1/*.proto
+    PYTHONPATH=/tmp/pygen:client_python python3 client_python/example.py --server 127.0.0.1:7450
+
+(from the repository's root; README.md, docs/protocol.md 9.3)
 """
 
 import argparse
