@@ -26,11 +26,15 @@ for (const encoding of ["float32", "16bit", "deltas"]) {
   await page.mouse.move(centre.x, centre.y);
   for (let i = 0; i < 6; ++i) await page.mouse.wheel(0, 100);
   const fps = [];
+  let sampled = started;
   while (Date.now() - started < seconds * 1000) {
     const t = (Date.now() - started) / 1000;
     await page.mouse.move(centre.x + 120 * Math.cos(t * 2), centre.y + 80 * Math.sin(t * 2));
     await page.waitForTimeout(50);
-    if (Math.floor(t) !== Math.floor(t - 0.05)) fps.push(await page.evaluate(() => window.felt.fps));
+    if (Date.now() - sampled >= 1000) {  // the page counts the frames it drew each second
+      sampled = Date.now();
+      fps.push(await page.evaluate(() => window.felt.fps));
+    }
   }
   const measured = await page.evaluate(() => ({
     decode: [...window.felt.decodeMs], bytes: [...window.felt.frameBytes], frames: window.felt.frames,
@@ -43,7 +47,7 @@ for (const encoding of ["float32", "16bit", "deltas"]) {
     encoding, frames: measured.frames - frames0, framesPerSecond,
     decodeP50: percentile(measured.decode, 0.5), decodeP99: percentile(measured.decode, 0.99),
     meanBytes, bytesPerSecond: meanBytes * framesPerSecond,
-    fpsMin: Math.min(...fps.slice(1)), fpsMedian: percentile(fps.slice(1), 0.5),
+    fpsMin: Math.min(...fps), fpsMedian: percentile(fps, 0.5),
     rtP50: percentile(measured.roundTrips, 0.5), rtP99: percentile(measured.roundTrips, 0.99),
     updates: measured.roundTrips.length,
   });
