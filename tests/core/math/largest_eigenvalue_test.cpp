@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 #include <Eigen/Eigenvalues>
 
-#include "core/generalized_mass_spring.hpp"
+#include "core/solids/generalized_mass_spring.hpp"
 
 namespace felt {
 namespace {
