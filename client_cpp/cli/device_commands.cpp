@@ -25,7 +25,6 @@ using client::ClientError;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using Vec3 = Eigen::Vector3d;  // core/types.hpp's, which the client no longer includes
 
 Eigen::Vector3d vec(const std::vector<double>& v) {
   return {v[0], v[1], v[2]};

@@ -24,6 +24,9 @@
 // is kept; a missing file is created). Progress goes to stderr. --quick runs a small subset (a
 // smoke test, not for the results). scripts/bench-solid-models builds it, runs it into
 // docs/results/ and draws the plots.
+//
+// Over 500 lines: one study read top to bottom (the two problems, the calibration, the runs,
+// the tables); its parts are used nowhere else.
 
 #include <time.h>  // clock_gettime: CPU time is less disturbed than wall time on a shared machine
 

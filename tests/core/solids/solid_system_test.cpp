@@ -3,6 +3,9 @@
 // momentum, a cube on an incline sticks with high friction and slides with g sin θ without,
 // a column of the thesis's material buckles as Greenhill predicts, and unstable or broken
 // steps never leave a non-finite state.
+//
+// Over 500 lines: one scenario per physical law of the solid step pipeline, each with its scene
+// set up in full where the reader can check it.
 
 #include "core/solids/solid_system.hpp"
 
