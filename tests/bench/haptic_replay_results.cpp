@@ -8,7 +8,8 @@
 //
 //   haptic_replay_results [OUTPUT.md] [--recordings DIR] [--repeats N (5)] [--seconds S (10)]
 //
-// --recordings writes each brute-force recording as CSV (common/device/haptic_recording.hpp) to DIR.
+// --recordings writes each brute-force recording as CSV (common/device/haptic_recording.hpp)
+// to DIR.
 //
 // Over 500 lines: one benchmark read top to bottom (falling and freezing the cloths, recording,
 // replaying per structure, the tables); its parts are used nowhere else.
