@@ -29,9 +29,7 @@ HapticSurface HapticFrame::surface_at(Real alpha) const {
     body.normals_from = older.normals;
     body.normals_to = newer.normals;
     body.query = queries[b].get();
-    body.max_displacement = max_displacement[b];
-    body.travelled = travelled[b];
-    body.chain = chain[b];
+    body.motion = motion[b];
   }
   return surface;
 }
@@ -81,9 +79,7 @@ std::shared_ptr<HapticFrame> make_haptic_frame(std::shared_ptr<const SceneSnapsh
       const std::pair<std::shared_ptr<const SceneSnapshot>, std::shared_ptr<const SceneSnapshot>>>(
       frame->from, frame->to);
   frame->older.assign(bodies.size(), nullptr);
-  frame->max_displacement.assign(bodies.size(), 0);
-  frame->travelled.assign(bodies.size(), 0);
-  frame->chain.assign(bodies.size(), 0);
+  frame->motion.assign(bodies.size(), SurfaceMotion{});
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const BodySnapshot* before = previous ? same_body(*previous->to, bodies[b], b) : nullptr;
     frame->older[b] = before ? before : &bodies[b];
@@ -93,19 +89,10 @@ std::shared_ptr<HapticFrame> make_haptic_frame(std::shared_ptr<const SceneSnapsh
     if (!query && before) query = previous->queries[index_in(*previous->to, before)]->clone();
     if (!query) query = make_triangle_query(kind, bodies[b].triangles(), newer);
     query->refit(older, newer);
-    Real largest_sq = 0;
-    for (std::size_t i = 0; i < newer.size(); ++i) {
-      largest_sq = std::max(largest_sq, (newer[i] - older[i]).squaredNorm());
-    }
-    frame->max_displacement[b] = std::sqrt(largest_sq);
-    if (before) {
-      const std::size_t i = index_in(*previous->to, before);
-      frame->travelled[b] = previous->travelled[i] + frame->max_displacement[b];
-      frame->chain[b] = previous->chain[i];
-    } else {
-      frame->travelled[b] = frame->max_displacement[b];
-      frame->chain[b] = new_chain();
-    }
+    // on the chain of the body's previous pair, or a new one
+    const SurfaceMotion chain = before ? previous->motion[index_in(*previous->to, before)]
+                                       : SurfaceMotion{0, 0, new_chain()};
+    frame->motion[b] = chain.then(older, newer);
   }
   return frame;
 }

@@ -24,9 +24,7 @@ struct HapticFrame {
   std::vector<const BodySnapshot*> older;
   /// per body of `to`, bounds over [older, to]; written only while the frame is being made
   std::vector<std::unique_ptr<TriangleQuery>> queries;
-  std::vector<Real> max_displacement;  ///< per body, the largest vertex move from older to `to`
-  std::vector<Real> travelled;         ///< per body: HapticBody::travelled
-  std::vector<std::uint64_t> chain;    ///< per body: HapticBody::chain
+  std::vector<SurfaceMotion> motion;  ///< per body, from older to `to` and along its chain
   /// holds `from` and `to` for surfaces kept after the frame is recycled
   std::shared_ptr<const void> storage;
   SteadyClock::time_point published;  ///< when `to` became the latest snapshot

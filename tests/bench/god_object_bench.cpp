@@ -49,8 +49,7 @@ struct Cloth {
   std::vector<Triangle> triangles;
   std::shared_ptr<const Snapshot> older, newer;
   std::unique_ptr<TriangleQuery> query;
-  Real max_displacement = 0;
-  Real travelled = 0;
+  SurfaceMotion motion{0, 0, 1};
 
   Cloth(TriangleQueryKind kind) {
     for (std::uint32_t j = 0; j + 1 < kSide; ++j) {
@@ -82,18 +81,13 @@ struct Cloth {
   void advance(Real t) {
     older = std::exchange(newer, snapshot(t));
     query->refit(older->positions, newer->positions);
-    max_displacement = 0;
-    for (std::size_t i = 0; i < newer->positions.size(); ++i) {
-      max_displacement =
-          std::max(max_displacement, (newer->positions[i] - older->positions[i]).norm());
-    }
-    travelled += max_displacement;
+    motion = motion.then(older->positions, newer->positions);
   }
 
   HapticSurface surface(std::uint64_t step) const {
     HapticSurface surface;
     surface.bodies = {HapticBody{0, triangles, older->positions, newer->positions, older->normals,
-                                 newer->normals, query.get(), max_displacement, travelled, 1}};
+                                 newer->normals, query.get(), motion}};
     surface.step = step;
     surface.storage = std::make_shared<const std::array<std::shared_ptr<const Snapshot>, 2>>(
         std::array{older, newer});

@@ -70,8 +70,8 @@ TEST(HapticFrame, AChainOfFramesBoundsTheMotionBetweenAnyTwoOfThem) {
   const auto surface = square_cloth();
   Publisher publisher;
   const HapticFrame& first = publisher.publish(snapshot_at(1, 0, surface));
-  EXPECT_EQ(first.travelled[0], 0);
-  const std::uint64_t chain = first.chain[0];
+  EXPECT_EQ(first.motion[0].travelled, 0);
+  const std::uint64_t chain = first.motion[0].chain;
   EXPECT_NE(chain, 0u);
   // one vertex goes up 3 cm while the whole cloth goes down 1 cm a step
   Real expected = 0;
@@ -81,14 +81,14 @@ TEST(HapticFrame, AChainOfFramesBoundsTheMotionBetweenAnyTwoOfThem) {
         publisher.publish(snapshot_at(step, -0.01 * (step - 1), surface, bump));
     const Real moved = step % 2 == 0 ? 0.02 : 0.04;  // the bump's vertex moves farthest
     expected += moved;
-    EXPECT_NEAR(frame.max_displacement[0], moved, 1e-12) << "step " << step;
-    EXPECT_NEAR(frame.travelled[0], expected, 1e-12) << "step " << step;
-    EXPECT_EQ(frame.chain[0], chain) << "step " << step;
+    EXPECT_NEAR(frame.motion[0].max_displacement, moved, 1e-12) << "step " << step;
+    EXPECT_NEAR(frame.motion[0].travelled, expected, 1e-12) << "step " << step;
+    EXPECT_EQ(frame.motion[0].chain, chain) << "step " << step;
   }
   // a new surface under the same id (a reset scene) starts a new chain
   const HapticFrame& reset = publisher.publish(snapshot_at(7, 0, square_cloth()));
-  EXPECT_NE(reset.chain[0], chain);
-  EXPECT_EQ(reset.travelled[0], 0);
+  EXPECT_NE(reset.motion[0].chain, chain);
+  EXPECT_EQ(reset.motion[0].travelled, 0);
 }
 
 TEST(HapticFrame, AKeptSurfaceHoldsItsSnapshotsAfterTheFrameIsReused) {

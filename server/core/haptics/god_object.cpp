@@ -53,7 +53,8 @@ bool finite(const TriangleCorners& c) {
 
 /// How far a vertex of the body moves between its snapshots (0 when it does not say).
 Real motion_of(const HapticBody& body) {
-  return std::isfinite(body.max_displacement) ? std::max(body.max_displacement, Real{0}) : 0;
+  const Real d = body.motion.max_displacement;
+  return std::isfinite(d) ? std::max(d, Real{0}) : 0;
 }
 
 /// Triangle `triangle` of `body` at `alpha`, unless it is not there (a bad index, a
@@ -83,11 +84,11 @@ Real travel_between(const HapticBody& then, Real then_alpha, const HapticBody& n
   if (then.from.data() == now.from.data() && then.to.data() == now.to.data()) {
     return std::abs(alpha - then_alpha) * motion;  // the same snapshot pair
   }
-  if (now.chain != 0 && now.chain == then.chain) {
+  if (now.motion.chain != 0 && now.motion.chain == then.motion.chain) {
     // along the chain of pairs between them; the slack covers the sums' rounding
-    const Real along = (now.travelled - (1 - alpha) * motion) -
-                       (then.travelled - (1 - then_alpha) * motion_of(then));
-    const Real travel = std::abs(along) + 1e-12 * (1 + std::abs(now.travelled));
+    const Real along = (now.motion.travelled - (1 - alpha) * motion) -
+                       (then.motion.travelled - (1 - then_alpha) * motion_of(then));
+    const Real travel = std::abs(along) + 1e-12 * (1 + std::abs(now.motion.travelled));
     if (std::isfinite(travel)) return travel;
   }
   // unrelated snapshots (the scene went on while nobody touched it): look at every vertex

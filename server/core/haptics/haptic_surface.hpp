@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/collision/triangle_query.hpp"
+#include "core/haptics/surface_motion.hpp"
 #include "core/math/types.hpp"
 
 namespace felt {
@@ -22,13 +23,8 @@ struct HapticBody {
   std::span<const Vec3> normals_to;
   /// bounds every triangle over [from, to]; never null
   const TriangleQuery* query = nullptr;
-  /// the largest distance a vertex moves from `from` to `to`
-  Real max_displacement = 0;
-  /// a bound on how far a vertex has moved from the start of its chain of snapshot pairs (each
-  /// pair's `from` the previous pair's `to`) to `to`: the sum of the pairs' max_displacement.
-  /// Two surfaces' bounds subtract when their bodies have the same nonzero `chain`.
-  Real travelled = 0;
-  std::uint64_t chain = 0;
+  /// how far its vertices move from `from` to `to`, and along its chain of snapshot pairs
+  SurfaceMotion motion;
 };
 
 struct HapticSurface {

@@ -37,8 +37,7 @@ struct Sheet {
   std::vector<Triangle> triangles;
   std::shared_ptr<const Snapshot> older, newer;
   std::unique_ptr<TriangleQuery> query;
-  Real displacement = 0;  ///< the largest vertex move from older to newer
-  Real travelled = 0;     ///< the sum of the displacements so far
+  SurfaceMotion motion{0, 0, 1};  ///< one chain of its own
 
   Sheet(std::uint32_t body_id, std::vector<Vec3> positions, std::vector<Triangle> tris)
       : id(body_id), triangles(std::move(tris)) {
@@ -54,16 +53,11 @@ struct Sheet {
     older = newer;
     newer = snapshot(std::move(next));
     query->refit(from(), to());
-    displacement = 0;
-    for (std::size_t i = 0; i < to().size(); ++i) {
-      displacement = std::max(displacement, (to()[i] - from()[i]).norm());
-    }
-    travelled += displacement;
+    motion = motion.then(from(), to());
   }
 
   HapticBody body() const {
-    return {id,          triangles,    from(),    to(), older->normals, newer->normals,
-            query.get(), displacement, travelled, 1};
+    return {id, triangles, from(), to(), older->normals, newer->normals, query.get(), motion};
   }
 
  private:
