@@ -37,6 +37,20 @@ void path_options(CLI::App* command, DeviceOptions& d) {
   command->add_option("--proxy", d.proxy, "Proxy id")->capture_default_str();
 }
 
+void local_model_options(CLI::App* command, DeviceOptions& d) {
+  command->add_flag("--local-model", d.local_model,
+                    "Render forces here at --rate against the server's local model of the "
+                    "surface near the proxy, sending updates upstream at --upstream-rate");
+  command->add_option("--model-radius", d.model_radius, "Local model radius, m")
+      ->capture_default_str();
+  command->add_option("--upstream-rate", d.upstream_rate, "Updates per second with --local-model")
+      ->capture_default_str();
+  command
+      ->add_option("--device-damping", d.device_damping,
+                   "N*s/m of the device and hand the delay-adapted stiffness counts on")
+      ->capture_default_str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -167,6 +181,7 @@ int main(int argc, char** argv) {
       "touch", "Drive a haptic proxy: one update --at a point, or a scripted --path at 1 kHz");
   touch_cmd->add_option("--at", device.at, "A single update at X,Y,Z")->delimiter(',')->expected(3);
   path_options(touch_cmd, device);
+  local_model_options(touch_cmd, device);
   touch_cmd->add_option("--log", device.log,
                         "Write every update's force, contact and round trip (CSV)");
   scene_options(touch_cmd, common);
@@ -174,6 +189,7 @@ int main(int argc, char** argv) {
   CLI::App* grab_cmd = app.add_subcommand(
       "grab", "Press from --from to --to with the grab button held, dragging what it touches");
   path_options(grab_cmd, device);
+  local_model_options(grab_cmd, device);
   grab_cmd->add_option("--log", device.log, "Write every update (CSV)");
   scene_options(grab_cmd, common);
 

@@ -25,6 +25,24 @@ from felt.v1 import (envelope_pb2, error_pb2, frames_pb2, haptics_pb2, scene_pb2
 PROTOCOL_VERSION = 1
 
 
+def local_model_triangles(model):
+    """The triangles of a LocalModel as {body_id: {triangle_id: ((x, y, z) of its 3 corners)}},
+    with each body's vertices as {vertex_id: (position, velocity, normal)} beside it:
+    ({body_id: triangles}, {body_id: vertices}). Positions are where the surface was age_s
+    before the message was sent; move them on by velocity * time to render later."""
+    triangles, vertices = {}, {}
+    for body in model.bodies:
+        def triple(values, i):
+            return tuple(values[3 * i:3 * i + 3])
+        known = {v: (triple(body.positions, i), triple(body.velocities, i),
+                     triple(body.normals, i)) for i, v in enumerate(body.vertex_ids)}
+        vertices[body.body_id] = known
+        triangles[body.body_id] = {
+            t: tuple(known[c][0] for c in body.corners[3 * i:3 * i + 3])
+            for i, t in enumerate(body.triangle_ids)}
+    return triangles, vertices
+
+
 class FeltError(Exception):
     """An Error reply: `code` is a felt.v1.ErrorCode value."""
 
@@ -151,6 +169,25 @@ class Client:
         return self.request(proxy_update=haptics_pb2.ProxyUpdate(
             proxy_id=proxy_id, position={"x": x, "y": y, "z": z}, buttons=buttons,
             client_time_us=time.monotonic_ns() // 1000))
+
+    def open_proxy(self, local_model_radius=None, local_model_rate_hz=0.0, **settings):
+        """Opens a proxy (ProxySettings fields as keywords, the scene's where left out); with
+        `local_model_radius` (m) its ForceUpdates carry the surface near it (LocalModel) for a
+        client that renders forces itself. Returns ProxyOpened."""
+        open_proxy = haptics_pb2.OpenProxy(settings=haptics_pb2.ProxySettings(**settings))
+        if local_model_radius is not None:
+            open_proxy.local_model.radius = local_model_radius
+            open_proxy.local_model.rate_hz = local_model_rate_hz
+        return self.request(open_proxy=open_proxy)
+
+    def local_proxy_update(self, proxy_id, position, local, buttons=0):
+        """A local-model proxy's update: the device at `position` and what the client's own
+        renderer felt there (`local`, a haptics_pb2.LocalContact). Returns the ForceUpdate,
+        with a LocalModel when a new one is due."""
+        x, y, z = position
+        return self.request(proxy_update=haptics_pb2.ProxyUpdate(
+            proxy_id=proxy_id, position={"x": x, "y": y, "z": z}, buttons=buttons,
+            client_time_us=time.monotonic_ns() // 1000, local=local))
 
     def get_stats(self):
         return self.request(get_stats=stats_pb2.GetStats())

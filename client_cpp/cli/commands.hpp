@@ -90,6 +90,11 @@ struct DeviceOptions {
   std::string csv;  ///< csv path: time, x, y, z[, buttons] per line
   std::string log;  ///< per update: CSV of force, contact and round trip
   std::uint32_t proxy = 0;
+  /// render forces locally against the server's local models (docs/protocol.md 7.5)
+  bool local_model = false;
+  double model_radius = 0.1;   ///< m: the surface sent around the proxy
+  double upstream_rate = 250;  ///< Hz: ProxyUpdates sent with --local-model
+  double device_damping = 20;  ///< N·s/m the delay-adapted stiffness counts on
 };
 int touch(const Common& common, const DeviceOptions& options);
 int grab(const Common& common, DeviceOptions options);

@@ -16,6 +16,7 @@
 #include "cli/progress.hpp"
 #include "device/device_path.hpp"
 #include "device/haptic_recording.hpp"
+#include "local_renderer.hpp"
 
 namespace felt::cli {
 
@@ -41,6 +42,23 @@ struct Sample {
   std::optional<v1::ForceUpdate> reply;
   double round_trip_us = 0;
 };
+
+void put(const Vec3& v, v1::Vec3& out) {
+  out.set_x(v.x());
+  out.set_y(v.y());
+  out.set_z(v.z());
+}
+
+/// The ProxyUpdate of proxy `proxy` for sample `s`.
+v1::ClientMessage update_message(std::uint32_t proxy, const Sample& s) {
+  v1::ClientMessage message;
+  v1::ProxyUpdate& update = *message.mutable_proxy_update();
+  update.set_proxy_id(proxy);
+  put(s.device.position, *update.mutable_position());
+  update.set_buttons(s.device.buttons);
+  update.set_client_time_us(s.sent_us);
+  return message;
+}
 
 DevicePath make_path(const DeviceOptions& o) {
   const auto need = [](const std::vector<double>& v, const char* flag) {
@@ -107,15 +125,7 @@ std::vector<Sample> drive(const Common& common, const DevicePath& path,
     s.sent_us = client::steady_microseconds();
     // the stamp identifies the reply; two updates in the same microsecond would share one
     if (k > 0 && s.sent_us <= samples[k - 1].sent_us) s.sent_us = samples[k - 1].sent_us + 1;
-    v1::ClientMessage message;
-    v1::ProxyUpdate& update = *message.mutable_proxy_update();
-    update.set_proxy_id(proxy);
-    update.mutable_position()->set_x(s.device.position.x());
-    update.mutable_position()->set_y(s.device.position.y());
-    update.mutable_position()->set_z(s.device.position.z());
-    update.set_buttons(s.device.buttons);
-    update.set_client_time_us(s.sent_us);
-    client.send(std::move(message));
+    client.send(update_message(proxy, s));
     progress.update(times[k]);
   }
   progress.finish();
@@ -143,6 +153,101 @@ std::vector<Sample> drive(const Common& common, const DevicePath& path,
   return samples;
 }
 
+/// The device's side of a local-model proxy (docs/protocol.md 7.5): opens a proxy asking for
+/// a local model, renders `path` at `times` against it with LocalRenderer, and sends the device
+/// and what it felt upstream every rate/upstream_rate ticks. Each sample's reply is what the
+/// device rendered at that tick, and its round trip the last one measured upstream. While the
+/// server says a vertex is held (grabbing is resolved there), the device renders the server's
+/// grab force.
+std::vector<Sample> drive_local(const Common& common, const DevicePath& path,
+                                const std::vector<double>& times, const DeviceOptions& o,
+                                const char* label) {
+  if (!(o.upstream_rate >= 1 && o.upstream_rate <= o.rate)) {
+    throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "--upstream-rate must be 1 Hz to --rate");
+  }
+  struct Mailbox {
+    std::mutex mutex;
+    std::optional<std::pair<LocalModel, double>> model;  ///< and the time it shows
+    double round_trip_us = 0;
+    std::optional<v1::ForceUpdate> latest;  ///< without its model
+    std::size_t dropped = 0;                ///< malformed models
+  } box;
+  FirstError error;
+  client::AsyncClient client;
+  client.on_force([&](const v1::ForceUpdate& force, std::uint64_t received_us) {
+    const double round_trip = static_cast<double>(received_us - force.client_time_us()) * 1e-6;
+    std::optional<LocalModel> model;
+    if (force.has_local_model()) model = client::local_model_from(force.local_model());
+    v1::ForceUpdate latest = force;
+    latest.clear_local_model();
+    std::lock_guard lock(box.mutex);
+    box.latest = std::move(latest);
+    box.round_trip_us = round_trip * 1e6;
+    if (model) {
+      const double shows = client::local_model_time(
+          force.local_model(), static_cast<double>(received_us) * 1e-6, round_trip);
+      box.model.emplace(std::move(*model), shows);
+    } else if (force.has_local_model()) {
+      ++box.dropped;
+    }
+  });
+  client.on_error([&](const v1::Error& e) { error.keep(e); });
+  connect(client, common, "felt-device");
+  v1::ClientMessage open;
+  open.mutable_open_proxy()->mutable_local_model()->set_radius(o.model_radius);
+  const v1::ProxyOpened opened = client.request(open).proxy_opened();
+  client::LocalRenderer renderer(opened.settings(), {o.device_damping, 1 / o.rate});
+  const auto every = static_cast<std::size_t>(std::max(1.0, std::round(o.rate / o.upstream_rate)));
+
+  std::vector<Sample> samples(times.size());
+  Progress progress(label, times.empty() ? 0 : times.back());
+  const Clock::time_point start = Clock::now();
+  for (std::size_t k = 0; k < times.size() && !error.any(); ++k) {
+    std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
+                                              std::chrono::duration<double>(times[k])));
+    Sample& s = samples[k];
+    s.time = times[k];
+    s.device = path.at(times[k]);
+    s.sent_us = client::steady_microseconds();
+    std::optional<v1::ForceUpdate> latest;
+    {
+      std::lock_guard lock(box.mutex);
+      if (box.model) {
+        renderer.take(box.model->first, box.model->second, box.round_trip_us * 1e-6);
+        box.model.reset();
+      }
+      latest = box.latest;
+      s.round_trip_us = box.round_trip_us;
+    }
+    const client::LocalForce felt =
+        renderer.tick(s.device.position, static_cast<double>(s.sent_us) * 1e-6);
+    v1::ForceUpdate& rendered = s.reply.emplace();
+    const HapticContact& c = felt.contact;
+    const bool grabbing = latest && latest->grabbing();
+    const Vec3 force = grabbing ? vec(latest->force()) : c.force;
+    rendered.set_proxy_id(opened.proxy_id());
+    put(force, *rendered.mutable_force());
+    rendered.set_in_contact(c.in_contact);
+    rendered.set_body_id(grabbing ? latest->body_id() : c.body_id);
+    rendered.set_triangle(c.triangle);
+    put(c.contact_point, *rendered.mutable_contact_point());
+    put(c.proxy, *rendered.mutable_proxy());
+    rendered.set_grabbing(grabbing);
+    if (grabbing) rendered.set_grabbed_vertex(latest->grabbed_vertex());
+    if (k % every == 0) {
+      v1::ClientMessage message = update_message(opened.proxy_id(), s);
+      *message.mutable_proxy_update()->mutable_local() = renderer.upstream();
+      client.send(std::move(message));
+    }
+    progress.update(times[k]);
+  }
+  progress.finish();
+  client.close();
+  error.throw_if_any();
+  if (box.dropped > 0) std::printf("%zu malformed local models dropped\n", box.dropped);
+  return samples;
+}
+
 std::vector<double> ticks(double duration, double rate) {
   std::vector<double> times;
   const auto count = static_cast<std::size_t>(std::floor(duration * rate)) + 1;
@@ -160,7 +265,7 @@ double percentile(std::vector<double> values, double p) {
 void write_log(const std::string& file, const std::vector<Sample>& samples) {
   std::ofstream out(file);
   out << "time,x,y,z,buttons,fx,fy,fz,in_contact,body,triangle,contact_x,contact_y,contact_z,"
-         "grabbing,round_trip_us\n";
+         "grabbing,round_trip_us,proxy_x,proxy_y,proxy_z\n";
   out.precision(9);
   for (const Sample& s : samples) {
     if (!s.reply) continue;
@@ -169,7 +274,8 @@ void write_log(const std::string& file, const std::vector<Sample>& samples) {
         << s.device.position.z() << "," << s.device.buttons << "," << r.force().x() << ","
         << r.force().y() << "," << r.force().z() << "," << r.in_contact() << "," << r.body_id()
         << "," << r.triangle() << "," << r.contact_point().x() << "," << r.contact_point().y()
-        << "," << r.contact_point().z() << "," << r.grabbing() << "," << s.round_trip_us << "\n";
+        << "," << r.contact_point().z() << "," << r.grabbing() << "," << s.round_trip_us << ","
+        << r.proxy().x() << "," << r.proxy().y() << "," << r.proxy().z() << "\n";
   }
   if (!out) throw ClientError(v1::ERROR_CODE_UNSPECIFIED, "cannot write " + file);
 }
@@ -221,12 +327,19 @@ int single_touch(const Common& common, const DeviceOptions& o) {
 }  // namespace
 
 int touch(const Common& common, const DeviceOptions& o) {
-  if (!o.at.empty()) return single_touch(common, o);
+  if (!o.at.empty()) {
+    if (o.local_model) {
+      throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "--local-model renders a --path, not --at");
+    }
+    return single_touch(common, o);
+  }
   if (!(o.rate >= 1 && o.rate <= 10'000)) {
     throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "--rate must be 1 to 10000 Hz");
   }
   const DevicePath path = make_path(o);
-  const auto samples = drive(common, path, ticks(path_duration(o, path), o.rate), o.proxy, "touch");
+  const std::vector<double> times = ticks(path_duration(o, path), o.rate);
+  const auto samples = o.local_model ? drive_local(common, path, times, o, "touch")
+                                     : drive(common, path, times, o.proxy, "touch");
   if (!o.log.empty()) write_log(o.log, samples);
   summarize(samples);
   return 0;

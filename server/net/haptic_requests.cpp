@@ -63,6 +63,75 @@ std::expected<ProxySettings, std::string> merge(const v1::ProxySettings& setting
 constexpr const char* kPositionOutOfBound = "position must be three numbers within ±1e6 m";
 static_assert(kMaxVectorComponent == 1e6, "the message names the bound");
 
+/// What a client asked of a local model, or why it cannot have it.
+std::expected<LocalModelRequest, std::string> local_model_request(
+    const v1::LocalModelRequest& asked) {
+  if (!(std::isfinite(asked.radius()) && asked.radius() > 0 && asked.radius() <= 1)) {
+    return std::unexpected("local_model.radius must be a finite number in (0, 1] m");
+  }
+  if (!(std::isfinite(asked.rate_hz()) && asked.rate_hz() >= 0 && asked.rate_hz() <= 1000)) {
+    return std::unexpected("local_model.rate_hz must be a finite number in [0, 1000]");
+  }
+  return LocalModelRequest{asked.radius(), asked.rate_hz()};
+}
+
+/// What a client's local renderer says it felt, or why that is no reading.
+std::expected<LocalContact, std::string> local_contact(const v1::LocalContact& local,
+                                                       const ProxySettings& settings) {
+  LocalContact contact;
+  contact.in_contact = local.in_contact();
+  contact.body_id = local.body_id();
+  contact.triangle = local.triangle();
+  contact.barycentric = to_vec3(local.barycentric());
+  contact.proxy = to_vec3(local.proxy());
+  contact.stiffness = local.stiffness();
+  if (!local.has_proxy() || !within_bounds(contact.proxy)) {
+    return std::unexpected("local.proxy must be three numbers within ±1e6 m");
+  }
+  if (!contact.in_contact) return contact;
+  // a contact point in its triangle, to rounding
+  constexpr Real kSlack = 1e-6;
+  if (!contact.barycentric.allFinite() || !(contact.barycentric.minCoeff() >= -kSlack) ||
+      !(std::abs(contact.barycentric.sum() - 1) <= kSlack)) {
+    return std::unexpected("local.barycentric must be three numbers >= 0 that sum to 1");
+  }
+  if (!(std::isfinite(contact.stiffness) && contact.stiffness > 0 &&
+        contact.stiffness <= settings.stiffness)) {
+    return std::unexpected("local.stiffness must be in (0, the proxy's stiffness]");
+  }
+  return contact;
+}
+
+void put_local_model(const LocalModelCut& cut, std::uint64_t send_ns, v1::LocalModel& out) {
+  out.set_step(cut.step);
+  const std::uint64_t rendered_ns = steady_ns(cut.rendered_at);
+  out.set_age_s((static_cast<double>(send_ns) - static_cast<double>(rendered_ns)) * 1e-9);
+  out.set_truncated(cut.model.truncated);
+  const auto put_all = [](const std::vector<Vec3>& from,
+                          google::protobuf::RepeatedField<double>& to) {
+    to.Reserve(static_cast<int>(3 * from.size()));
+    for (const Vec3& v : from) {
+      to.Add(v.x());
+      to.Add(v.y());
+      to.Add(v.z());
+    }
+  };
+  for (const LocalModelBody& body : cut.model.bodies) {
+    v1::LocalModelBody& wire = *out.add_bodies();
+    wire.set_body_id(body.body_id);
+    wire.set_vertex_count(body.vertex_count);
+    wire.set_triangle_count(body.triangle_count);
+    wire.mutable_triangle_ids()->Add(body.triangle_ids.begin(), body.triangle_ids.end());
+    for (const Triangle& corners : body.corners) {
+      wire.mutable_corners()->Add(corners.begin(), corners.end());
+    }
+    wire.mutable_vertex_ids()->Add(body.vertex_ids.begin(), body.vertex_ids.end());
+    put_all(body.positions, *wire.mutable_positions());
+    put_all(body.velocities, *wire.mutable_velocities());
+    put_all(body.normals, *wire.mutable_normals());
+  }
+}
+
 std::string too_many_proxies(Session& session) {
   return "at most " + std::to_string(session.context().options.max_proxies_per_session) +
          " proxies per client (--max-proxies)";
@@ -76,15 +145,29 @@ void handle_open_proxy(Session& session, std::uint64_t id, const v1::OpenProxy& 
     session.send_error(id, v1::ERROR_CODE_BAD_REQUEST, settings.error());
     return;
   }
+  std::optional<LocalModelRequest> local_model;
+  if (open.has_local_model()) {
+    const auto asked = local_model_request(open.local_model());
+    if (!asked) {
+      session.send_error(id, v1::ERROR_CODE_BAD_REQUEST, asked.error());
+      return;
+    }
+    local_model = *asked;
+  }
   const std::uint32_t proxy = session.open_proxy(*settings);
   if (proxy == 0) {
     session.send_error(id, v1::ERROR_CODE_LIMIT_EXCEEDED, too_many_proxies(session));
     return;
   }
+  if (local_model) session.proxy(proxy)->enable_local_model(*local_model);
   reply(session, id, [&](v1::ServerMessage& message) {
     v1::ProxyOpened& opened = *message.mutable_proxy_opened();
     opened.set_proxy_id(proxy);
     fill_proxy_settings(*settings, *opened.mutable_settings());
+    if (local_model) {
+      opened.mutable_local_model()->set_radius(local_model->radius);
+      opened.mutable_local_model()->set_rate_hz(local_model->rate_hz);
+    }
   });
 }
 
@@ -114,7 +197,23 @@ void handle_proxy_update(Session& session, std::uint64_t id, const v1::ProxyUpda
     session.send_error(id, v1::ERROR_CODE_LIMIT_EXCEEDED, too_many_proxies(session));
     return;
   }
-  const ProxyOutput out = session.scene()->render(*proxy, position, update.buttons());
+  std::optional<LocalContact> local;
+  if (update.has_local()) {
+    if (!proxy->local_model()) {
+      session.send_error(id, v1::ERROR_CODE_BAD_REQUEST,
+                         "proxy " + std::to_string(update.proxy_id()) +
+                             " has no local model (OpenProxy.local_model)");
+      return;
+    }
+    auto felt = local_contact(update.local(), proxy->settings());
+    if (!felt) {
+      session.send_error(id, v1::ERROR_CODE_BAD_REQUEST, felt.error());
+      return;
+    }
+    local = *felt;
+  }
+  const ProxyOutput out =
+      session.scene()->render(*proxy, position, update.buttons(), local ? &*local : nullptr);
   const HapticContact& contact = out.contact;
   // an idle proxy beside this one lets its snapshots go (no clock read: the update's time)
   session.forget_idle_proxy_surfaces(proxy->last_update());
@@ -134,7 +233,9 @@ void handle_proxy_update(Session& session, std::uint64_t id, const v1::ProxyUpda
     force->set_grabbed_vertex(out.grabbed_vertex);
     force->set_client_time_us(update.client_time_us());
     force->set_server_receive_ns(received);
-    force->set_server_send_ns(steady_ns());
+    const std::uint64_t send_ns = steady_ns();
+    if (out.local_model) put_local_model(*out.local_model, send_ns, *force->mutable_local_model());
+    force->set_server_send_ns(send_ns);
   });
 }
 

@@ -68,8 +68,36 @@ ProxyOutput HapticProxy::hold(ReactionAccumulator& reactions) const {
   return out;
 }
 
+std::optional<Collider> HapticProxy::finger(const Vec3& centre) const {
+  if (!(settings_.radius > 0)) return std::nullopt;
+  Collider sphere;
+  sphere.shape = Collider::Shape::kSphere;
+  sphere.center = centre;
+  sphere.radius = 0.5 * settings_.radius;
+  sphere.friction = settings_.dynamic_friction;
+  return sphere;
+}
+
+ProxySample HapticProxy::local_sample(const HapticSurface& surface, const Vec3& device,
+                                      const LocalContact& local) const {
+  ProxySample sample;
+  const HapticBody* body = surface.find(local.body_id);
+  // a triangle the surface no longer has (the body went, the scene was reset) pushes nothing
+  if (local.in_contact && body && local.triangle >= 0 &&
+      static_cast<std::size_t>(local.triangle) < body->triangles.size()) {
+    const Real stiffness = std::min(local.stiffness, settings_.stiffness);
+    const Vec3 force = clamped_spring_force(stiffness, local.proxy - device, settings_.max_force);
+    sample.push =
+        ProxySample::Push{local.body_id, body->triangles[static_cast<std::size_t>(local.triangle)],
+                          local.barycentric, -force};
+  }
+  sample.sphere = finger(local.proxy);
+  return sample;
+}
+
 ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec3& device,
-                                std::uint32_t buttons, ReactionAccumulator& reactions) {
+                                std::uint32_t buttons, ReactionAccumulator& reactions,
+                                const LocalContact* local) {
   if (!within_bounds(device)) return hold(reactions);
   if (!god_) god_.emplace(settings_, starting_point(surface, device));
 
@@ -104,6 +132,8 @@ ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec
                           Vec3(1, 0, 0), -out.contact.force};
     sample.grab =
         GrabSpring{grab_->body, grab_->vertex, device, settings_.stiffness, settings_.damping};
+  } else if (local) {
+    sample = local_sample(surface, device, *local);
   } else {
     if (out.contact.in_contact && out.contact.triangle >= 0) {
       const HapticBody& body = *surface.find(out.contact.body_id);
@@ -115,13 +145,7 @@ ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec
     // so a cloth pressed hard wraps around it instead of folding into it; the outer half is
     // left to the god-object, which must touch the surface first to feel it (a grabbed vertex
     // hangs inside the sphere, so there is none while grabbing)
-    if (settings_.radius > 0) {
-      Collider& sphere = sample.sphere.emplace();
-      sphere.shape = Collider::Shape::kSphere;
-      sphere.center = out.contact.proxy;
-      sphere.radius = 0.5 * settings_.radius;
-      sphere.friction = settings_.dynamic_friction;
-    }
+    sample.sphere = finger(out.contact.proxy);
   }
   reactions.record(key_, sample);
   return out;

@@ -9,7 +9,9 @@
 #include <optional>
 
 #include "core/haptics/god_object.hpp"
+#include "core/haptics/local_model.hpp"
 #include "runtime/haptic_frame.hpp"
+#include "runtime/local_model_feed.hpp"
 #include "runtime/reaction_accumulator.hpp"
 
 namespace felt {
@@ -17,11 +19,30 @@ namespace felt {
 /// ProxyUpdate.buttons: bit 0 grabs.
 constexpr std::uint32_t kGrabButton = 1u;
 
+/// What a client's local renderer felt at its device's position (a local-model proxy): the
+/// body takes the reaction of this contact instead of the server's own.
+struct LocalContact {
+  bool in_contact = false;
+  std::uint32_t body_id = 0;
+  std::int32_t triangle = -1;
+  Vec3 barycentric = Vec3::Zero();
+  Vec3 proxy = Vec3::Zero();  ///< the client's god-object centre
+  Real stiffness = 0;         ///< N/m the client rendered with
+};
+
+/// A local model cut for a proxy, and when its positions are the surface rendered.
+struct LocalModelCut {
+  LocalModel model;
+  std::uint64_t step = 0;
+  SteadyClock::time_point rendered_at;
+};
+
 struct ProxyOutput {
   HapticContact contact;  ///< force = what the device renders (the grab spring while grabbing)
   bool grabbing = false;
   std::uint32_t grabbed_body = 0;  ///< while grabbing: the body and surface vertex held
   std::uint32_t grabbed_vertex = 0;
+  std::optional<LocalModelCut> local_model;  ///< a local-model proxy's next model, when due
 };
 
 class HapticProxy {
@@ -31,13 +52,20 @@ class HapticProxy {
 
   std::uint64_t key() const { return key_; }
   const ProxySettings& settings() const { return settings_; }
+  /// Makes this a local-model proxy: its client renders forces against models of the surface.
+  void enable_local_model(const LocalModelRequest& request) { local_model_.emplace(request); }
+  /// The feed of a local-model proxy, or null.
+  LocalModelFeed* local_model() { return local_model_ ? &*local_model_ : nullptr; }
 
   /// One update with the device at `device` and its `buttons`, against `surface` as rendered
   /// now, `dt` seconds after the previous update (0: unknown); the reaction on the touched body
   /// goes to `reactions`. A device position that is not finite or beyond ±1e6 m is no reading
-  /// (GodObject::update): no force either way, a grab is kept for the next.
+  /// (GodObject::update): no force either way, a grab is kept for the next. With `local` (what
+  /// a local renderer felt, not grabbing) the body takes that contact's reaction,
+  /// stiffness · (proxy − device) clamped to max_force, at its triangle if the surface has it.
   ProxyOutput update(const HapticSurface& surface, Real dt, const Vec3& device,
-                     std::uint32_t buttons, ReactionAccumulator& reactions);
+                     std::uint32_t buttons, ReactionAccumulator& reactions,
+                     const LocalContact* local = nullptr);
 
   /// Seconds since the previous call (0 the first time): the `dt` of a live update.
   Real seconds_since_last(SteadyClock::time_point now);
@@ -59,11 +87,17 @@ class HapticProxy {
   Vec3 grab_force(const HapticSurface& surface, const Vec3& device) const;
   /// The reply to an update that is no reading: no force, nothing pushed or pulled.
   ProxyOutput hold(ReactionAccumulator& reactions) const;
+  /// The room the finger takes around a proxy centred at `centre` (see update), if any.
+  std::optional<Collider> finger(const Vec3& centre) const;
+  /// What the body feels of a local renderer's contact.
+  ProxySample local_sample(const HapticSurface& surface, const Vec3& device,
+                           const LocalContact& local) const;
 
   std::uint64_t key_;
   ProxySettings settings_;
   std::optional<GodObject> god_;
   std::optional<Grab> grab_;
+  std::optional<LocalModelFeed> local_model_;
   SteadyClock::time_point last_update_{};
 };
 

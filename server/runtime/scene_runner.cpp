@@ -15,6 +15,9 @@ namespace {
 
 // haptic frames are made while some proxy was rendered this recently
 constexpr auto kHapticIdle = std::chrono::seconds(1);
+// the most triangles a local model carries: a 10 cm radius holds a few hundred of a fine cloth;
+// this many (about 600 KB) is a proxy asking for far more than it can reach
+constexpr std::size_t kMaxLocalModelTriangles = 8192;
 // retired haptic frames kept for reuse: the latest, one a reader may still hold, one free
 constexpr std::size_t kHapticPoolSize = 3;
 // while a paused scene takes requested steps as fast as it can, it publishes this often
@@ -414,11 +417,23 @@ std::vector<HapticRecord> SceneRunner::device_states() const {
   return servo_ ? servo_->latest() : std::vector<HapticRecord>{};
 }
 
-ProxyOutput SceneRunner::render(HapticProxy& proxy, const Vec3& device, std::uint32_t buttons) {
+ProxyOutput SceneRunner::render(HapticProxy& proxy, const Vec3& device, std::uint32_t buttons,
+                                const LocalContact* local) {
   const auto frame = haptic_frame();
   const SteadyClock::time_point now = SteadyClock::now();
-  const ProxyOutput out =
-      proxy.update(frame->surface(now), proxy.seconds_since_last(now), device, buttons, reactions_);
+  ProxyOutput out = proxy.update(frame->surface(now), proxy.seconds_since_last(now), device,
+                                 buttons, reactions_, local);
+  LocalModelFeed* feed = proxy.local_model();
+  if (feed && feed->due(frame->to->version, now)) {
+    // the newer snapshot, moving at the velocities the render interpolates with; the render
+    // reaches it one interval after it was published (HapticFrame)
+    const Vec3& centre = local ? local->proxy : out.contact.proxy;
+    out.local_model = LocalModelCut{
+        cut_local_model(frame->surface_at(1), std::chrono::duration<Real>(frame->interval).count(),
+                        centre, feed->request().radius, kMaxLocalModelTriangles),
+        frame->to->step, frame->published + frame->interval};
+    feed->sent(frame->to->version, now);
+  }
   haptic_updates_.fetch_add(1, std::memory_order_relaxed);
   const HapticContact& contact = out.contact;
   presence_.update({proxy.key(), contact.proxy, proxy.settings().radius, contact.in_contact,

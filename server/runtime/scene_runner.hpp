@@ -172,9 +172,12 @@ class SceneRunner {
     return HapticProxy(key, settings);
   }
   /// Updates `proxy` with its device at `device` against the surfaces as rendered now, and
-  /// records its reaction on the touched body. Safe from any thread; one proxy is updated by
-  /// one thread at a time.
-  ProxyOutput render(HapticProxy& proxy, const Vec3& device, std::uint32_t buttons);
+  /// records its reaction on the touched body (the reaction of `local`, when a local renderer
+  /// felt it: HapticProxy::update). A local-model proxy gets the surface near it (near
+  /// `local`'s proxy, else the server's) in the output when its feed has one due. Safe from any
+  /// thread; one proxy is updated by one thread at a time.
+  ProxyOutput render(HapticProxy& proxy, const Vec3& device, std::uint32_t buttons,
+                     const LocalContact* local = nullptr);
   /// Forgets a closed proxy's pending reaction.
   void close_proxy(const HapticProxy& proxy) {
     reactions_.forget(proxy.key());

@@ -2,6 +2,7 @@
 // default scene's curtain, hanging in the plane z = 0; and what they say when the server
 // refuses their updates.
 
+#include <cmath>
 #include <fstream>
 
 #include "felt_cli_fixture.hpp"
@@ -27,7 +28,7 @@ std::vector<std::vector<std::string>> csv_rows(const std::filesystem::path& file
 /// The touch log's columns, as the README documents them.
 constexpr const char* kLogHeader =
     "time,x,y,z,buttons,fx,fy,fz,in_contact,body,triangle,contact_x,contact_y,contact_z,"
-    "grabbing,round_trip_us";
+    "grabbing,round_trip_us,proxy_x,proxy_y,proxy_z";
 /// What record writes and replay reads (feltd run --replay's format).
 constexpr const char* kRecordingHeader =
     "time,device,x,y,z,buttons,contact,body,triangle,proxy_x,proxy_y,proxy_z,fx,fy,fz";
@@ -66,7 +67,7 @@ TEST_F(FeltCliTest, TouchAlongALineLogsEveryUpdate) {
   int in_contact = 0;
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const auto& row = rows[k];
-    ASSERT_EQ(row.size(), 16u) << k;
+    ASSERT_EQ(row.size(), 19u) << k;
     EXPECT_NEAR(std::stod(row[kTime]), k / 200.0, 1e-9);
     EXPECT_EQ(std::stod(row[kX]), 0);
     EXPECT_NEAR(std::stod(row[kY]), 1.2, 1e-12);
@@ -89,6 +90,46 @@ TEST_F(FeltCliTest, TouchAlongALineLogsEveryUpdate) {
     }
   }
   EXPECT_GT(in_contact, 0);
+}
+
+// Issue 26 on loopback: the device renders the curtain itself, at 1 kHz, against the local
+// model the server sends with its replies to updates at 250 Hz.
+TEST_F(FeltCliTest, TouchWithALocalModelRendersTheCurtainAtTheDevicesRate) {
+  const auto log = dir_ / "local.csv";
+  const CommandResult r = felt({"touch", "--local-model", "--path", "line", "--from", "0,1.2,0.08",
+                                "--to", "0,1.2,-0.02", "--period", "0.5", "--rate", "1000",
+                                "--upstream-rate", "250", "--log", log.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find("501 updates sent, 501 answered, "), 0u) << r.out;
+  std::string header;
+  const auto rows = csv_rows(log, header);
+  EXPECT_EQ(header, kLogHeader);
+  ASSERT_EQ(rows.size(), 501u);
+  int in_contact = 0;
+  double deepest_force = 0;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const auto& row = rows[k];
+    ASSERT_EQ(row.size(), 19u) << k;
+    const double fx = std::stod(row[kFx]), fy = std::stod(row[kFy]), fz = std::stod(row[kFz]);
+    const double magnitude = std::sqrt(fx * fx + fy * fy + fz * fz);
+    ASSERT_TRUE(std::isfinite(magnitude)) << k;
+    EXPECT_LE(magnitude, 10 + 1e-6) << k;  // the scene's max_force
+    if (row[kInContact] == "1") {
+      ++in_contact;
+      EXPECT_EQ(row[kBody], "0");
+      EXPECT_GE(std::stoi(row[kTriangle]), 0);
+      EXPECT_GT(fz, 0) << k;  // pushed back out, towards +z
+    } else {
+      EXPECT_EQ(magnitude, 0) << k;
+    }
+    if (std::stod(row[kZ]) > 0.05) {
+      EXPECT_EQ(row[kInContact], "0") << k;
+    }
+    if (k == 250) deepest_force = fz;
+  }
+  // at the deepest, 2 cm behind the resting curtain with a 2 cm proxy: pushed hard out
+  EXPECT_GT(deepest_force, 2) << r.out;
+  EXPECT_GT(in_contact, 100);
 }
 
 TEST_F(FeltCliTest, TouchAlongACircleStaysOnIt) {

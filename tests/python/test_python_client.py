@@ -14,8 +14,8 @@ import tempfile
 import time
 import traceback
 
-from felt.v1 import error_pb2, events_pb2
-from felt_client import Client, FeltError, encode_varint, take_messages
+from felt.v1 import error_pb2, events_pb2, haptics_pb2
+from felt_client import Client, FeltError, encode_varint, local_model_triangles, take_messages
 
 TIMEOUT = 5.0  # seconds for any one thing the server should do
 
@@ -97,6 +97,38 @@ def test_nan_position(client, port):
     expect(not free.in_contact and abs(free.contact_point.z - 0.5) < 1e-6, f"after the NaN: {free}")
 
 
+def test_local_model(client, port):
+    opened = client.open_proxy(local_model_radius=0.05)
+    expect(abs(opened.local_model.radius - 0.05) < 1e-12, f"granted {opened.local_model}")
+    expect_error(error_pb2.ERROR_CODE_BAD_REQUEST, client.open_proxy, 5.0)
+    expect_error(error_pb2.ERROR_CODE_BAD_REQUEST, client.open_proxy, 0.05, 1e9)
+    pid = opened.proxy_id
+    near = (0.0, 1.2, 0.03)  # 3 cm in front of the curtain
+    free = haptics_pb2.LocalContact(proxy={"x": near[0], "y": near[1], "z": near[2]})
+    reply = client.local_proxy_update(pid, near, free)
+    expect(reply.HasField("local_model"), "the first update got no local model")
+    triangles, vertices = local_model_triangles(reply.local_model)
+    expect(triangles, f"no triangle within 5 cm: {reply.local_model}")
+    for body in reply.local_model.bodies:
+        expect(all(t < body.triangle_count for t in body.triangle_ids), "a triangle id too large")
+    for body_vertices in vertices.values():
+        for position, velocity, normal in body_vertices.values():
+            expect(all(math.isfinite(x) for x in position + velocity + normal), "not finite")
+            expect(abs(position[2]) < 0.1, f"a vertex far from the proxy: {position}")
+    # bad readings of the client's renderer are refused, the proxy goes on
+    bad = haptics_pb2.LocalContact(proxy={"x": math.nan, "y": 1.2, "z": 0.03})
+    expect_error(error_pb2.ERROR_CODE_BAD_REQUEST, client.local_proxy_update, pid, near, bad)
+    body_id, body_triangles = next(iter(triangles.items()))
+    too_stiff = haptics_pb2.LocalContact(
+        in_contact=True, body_id=body_id, triangle=next(iter(body_triangles)),
+        barycentric={"x": 1, "y": 0, "z": 0}, proxy=free.proxy,
+        stiffness=2 * opened.settings.stiffness)
+    expect_error(error_pb2.ERROR_CODE_BAD_REQUEST, client.local_proxy_update, pid, near, too_stiff)
+    expect_error(error_pb2.ERROR_CODE_BAD_REQUEST, client.local_proxy_update, 0, near, free)
+    again = client.local_proxy_update(pid, near, free)
+    expect(again.proxy_id == pid, f"after the refusals: {again}")
+
+
 def test_garbage(client, port):
     # a raw socket: Client only sends well-formed messages
     with socket.create_connection(("127.0.0.1", port), timeout=TIMEOUT) as raw:
@@ -133,7 +165,14 @@ def test_viewer_additions(client, port):
         expect(all(math.isfinite(s) for s in curtain.scalars) and max(curtain.scalars) > 0,
                f"strain {min(curtain.scalars)} .. {max(curtain.scalars)}")
     client.request(unsubscribe_frames={})
-    body = client.get_stats().scene.body_stats[0]
+    # the physics thread measures the bodies once per half second of the scene's running
+    deadline = time.monotonic() + TIMEOUT
+    stats = client.get_stats().scene
+    while not stats.body_stats and time.monotonic() < deadline:
+        time.sleep(0.05)
+        stats = client.get_stats().scene
+    expect(stats.body_stats, "no body statistics")
+    body = stats.body_stats[0]
     expect(body.kind == "cloth" and body.integrator, f"body statistics: {body}")
 
 
@@ -163,7 +202,7 @@ def main():
             with Client("127.0.0.1", port, timeout=TIMEOUT) as client:
                 client.hello("python-test")
                 for test in (test_welcome, test_hello_required, test_list_scenes, test_frames,
-                             test_touch, test_nan_position, test_garbage,
+                             test_touch, test_nan_position, test_local_model, test_garbage,
                              test_viewer_additions, test_stats):
                     test(client, port)
                     print("ok", test.__name__)

@@ -1,4 +1,5 @@
-// One device's proxy in a scene: grabbing, and device positions that are no reading.
+// One device's proxy in a scene: grabbing, device positions that are no reading, and the
+// reaction of what a local renderer felt.
 
 #include <limits>
 #include <memory>
@@ -55,6 +56,49 @@ TEST(HapticProxy, AGrabHoldsThroughDevicePositionsThatAreNoReading) {
   reactions.apply_and_clear(scene.world);
   EXPECT_EQ(scene.world.step().flags, kStepOk);
   reactions.forget(1);
+}
+
+// Issue 26: a local-model proxy's body takes the reaction of the contact the client's renderer
+// felt (its triangle, stiffness · (proxy − device) clamped), not the server's own contact.
+TEST(HapticProxy, ALocalContactPushesTheTriangleTheClientFelt) {
+  const auto positions_after_a_step = [](const LocalContact* local) {
+    Scene scene = flat_cloth_scene();  // in y = 0, 1 m square, 10 N at most
+    const auto frame = make_haptic_frame(make_snapshot(scene.world), nullptr, nullptr,
+                                         TriangleQueryKind::kBvhAabb4, SteadyClock::now());
+    ReactionAccumulator reactions;
+    HapticProxy proxy(1, scene.haptics);
+    // the server's proxy is free, 20 cm above the cloth
+    const ProxyOutput out =
+        proxy.update(frame->surface_at(1), 1e-3, Vec3(0.5, 0.2, 0.5), 0, reactions, local);
+    EXPECT_FALSE(out.contact.in_contact);
+    reactions.apply_and_clear(scene.world);
+    EXPECT_EQ(scene.world.step().flags, kStepOk);
+    return make_snapshot(scene.world)->bodies[0].positions;
+  };
+  const std::vector<Vec3> untouched = positions_after_a_step(nullptr);
+  const Scene probe = flat_cloth_scene();
+  const std::vector<Triangle>& triangles = make_snapshot(probe.world)->bodies[0].triangles();
+  LocalContact felt;
+  felt.in_contact = true;
+  felt.body_id = make_snapshot(probe.world)->bodies[0].body_id;
+  felt.triangle = static_cast<std::int32_t>(triangles.size() / 2 + 5);
+  felt.barycentric = Vec3::Constant(1.0 / 3);
+  felt.proxy = Vec3(0.5, 0.3, 0.5);  // 10 cm above the device: 40 N, clamped to 10 N
+  felt.stiffness = 400;
+  const std::vector<Vec3> pushed = positions_after_a_step(&felt);
+  const Triangle& corners = triangles[static_cast<std::size_t>(felt.triangle)];
+  for (std::uint32_t v = 0; v < pushed.size(); ++v) {
+    const bool corner = v == corners[0] || v == corners[1] || v == corners[2];
+    if (corner) {
+      // pushed down, away from the proxy above it
+      EXPECT_LT(pushed[v].y(), untouched[v].y() - 1e-9) << "corner " << v;
+    } else {
+      EXPECT_EQ(pushed[v], untouched[v]) << "vertex " << v;  // one step: only the corners
+    }
+  }
+  // a triangle the surface does not have pushes nothing
+  felt.triangle = static_cast<std::int32_t>(triangles.size());
+  EXPECT_EQ(positions_after_a_step(&felt), untouched);
 }
 
 }  // namespace
