@@ -425,13 +425,21 @@ ProxyOutput SceneRunner::render(HapticProxy& proxy, const Vec3& device, std::uin
                                  buttons, reactions_, local);
   LocalModelFeed* feed = proxy.local_model();
   if (feed && feed->due(frame->to->version, now)) {
-    // the newer snapshot, moving at the velocities the render interpolates with; the render
-    // reaches it one interval after it was published (HapticFrame)
+    // the newer snapshot, which the render reaches one interval after it was published
+    // (HapticFrame), moving at the velocities of the simulation at the scene's pace: not over
+    // the wall time between the two publications, which a loaded machine makes in bursts
+    // (velocities 50 times too large, and a client's extrapolation far off)
+    Real scale = 0;
+    {
+      std::lock_guard lock(stats_mutex_);
+      scale = stats_.time_scale;
+    }
+    const Real stepped = frame->to->sim_time - frame->from->sim_time;
     const Vec3& centre = local ? local->proxy : out.contact.proxy;
-    out.local_model = LocalModelCut{
-        cut_local_model(frame->surface_at(1), std::chrono::duration<Real>(frame->interval).count(),
-                        centre, feed->request().radius, kMaxLocalModelTriangles),
-        frame->to->step, frame->published + frame->interval};
+    out.local_model =
+        LocalModelCut{cut_local_model(frame->surface_at(1), scale > 0 ? stepped / scale : 0, centre,
+                                      feed->request().radius, kMaxLocalModelTriangles),
+                      frame->to->step, frame->published + frame->interval};
     feed->sent(frame->to->version, now);
   }
   haptic_updates_.fetch_add(1, std::memory_order_relaxed);
