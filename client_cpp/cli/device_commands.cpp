@@ -60,6 +60,21 @@ v1::ClientMessage update_message(std::uint32_t proxy, const Sample& s) {
   return message;
 }
 
+/// Waits until `times[k]` after `start`, and makes sample k: the path there, stamped with the
+/// steady clock. The stamp identifies a reply: two updates in the same microsecond would share
+/// one, so each is later than the one before.
+Sample& tick(const DevicePath& path, const std::vector<double>& times, std::size_t k,
+             Clock::time_point start, std::vector<Sample>& samples) {
+  std::this_thread::sleep_until(
+      start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(times[k])));
+  Sample& s = samples[k];
+  s.time = times[k];
+  s.device = path.at(times[k]);
+  s.sent_us = client::steady_microseconds();
+  if (k > 0 && s.sent_us <= samples[k - 1].sent_us) s.sent_us = samples[k - 1].sent_us + 1;
+  return s;
+}
+
 DevicePath make_path(const DeviceOptions& o) {
   const auto need = [](const std::vector<double>& v, const char* flag) {
     if (v.size() != 3)
@@ -117,14 +132,7 @@ std::vector<Sample> drive(const Common& common, const DevicePath& path,
   Progress progress(label, times.empty() ? 0 : times.back());
   const Clock::time_point start = Clock::now();
   for (std::size_t k = 0; k < times.size() && !error.any(); ++k) {
-    std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
-                                              std::chrono::duration<double>(times[k])));
-    Sample& s = samples[k];
-    s.time = times[k];
-    s.device = path.at(times[k]);
-    s.sent_us = client::steady_microseconds();
-    // the stamp identifies the reply; two updates in the same microsecond would share one
-    if (k > 0 && s.sent_us <= samples[k - 1].sent_us) s.sent_us = samples[k - 1].sent_us + 1;
+    const Sample& s = tick(path, times, k, start, samples);
     client.send(update_message(proxy, s));
     progress.update(times[k]);
   }
@@ -203,12 +211,7 @@ std::vector<Sample> drive_local(const Common& common, const DevicePath& path,
   Progress progress(label, times.empty() ? 0 : times.back());
   const Clock::time_point start = Clock::now();
   for (std::size_t k = 0; k < times.size() && !error.any(); ++k) {
-    std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
-                                              std::chrono::duration<double>(times[k])));
-    Sample& s = samples[k];
-    s.time = times[k];
-    s.device = path.at(times[k]);
-    s.sent_us = client::steady_microseconds();
+    Sample& s = tick(path, times, k, start, samples);
     std::optional<v1::ForceUpdate> latest;
     {
       std::lock_guard lock(box.mutex);
