@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/command_errors.hpp"
 #include "cli/commands.hpp"
 #include "scheduling/latency_options.hpp"
 
@@ -125,6 +126,29 @@ int main(int argc, char** argv) {
   solid_cmd->add_option("--node-mass", solid.node_mass, "kg per node")->capture_default_str();
   solid_cmd->add_option("--json", body_json, "The body's scene JSON (or @FILE) instead");
   scene_options(solid_cmd, common);
+
+  CLI::App* pause_cmd = app.add_subcommand("pause", "Stop the scene's clock");
+  scene_options(pause_cmd, common);
+  CLI::App* resume_cmd = app.add_subcommand("resume", "Run the scene in real time again");
+  scene_options(resume_cmd, common);
+  std::uint32_t steps = 0;
+  CLI::App* step_cmd = app.add_subcommand("step", "Take N steps of a paused scene");
+  step_cmd->add_option("N", steps, "How many steps")->required();
+  scene_options(step_cmd, common);
+  CLI::App* reset_cmd =
+      app.add_subcommand("reset", "Build the scene again from its source, at step 0");
+  scene_options(reset_cmd, common);
+  std::string state_file;
+  CLI::App* save_cmd = app.add_subcommand("save", "Save the scene's state to a JSON file");
+  save_cmd->add_option("FILE", state_file, "Where to write it")->required();
+  scene_options(save_cmd, common);
+  CLI::App* restore_cmd = app.add_subcommand("restore", "Restore a state 'felt save' wrote");
+  restore_cmd->add_option("FILE", state_file, "A file 'felt save' wrote")->required();
+  scene_options(restore_cmd, common);
+  std::uint64_t destroyed_scene = 0;
+  CLI::App* destroy_cmd = app.add_subcommand(
+      "destroy", "Stop a running scene and send its clients out (not the server's own scenes)");
+  destroy_cmd->add_option("SCENE", destroyed_scene, "Scene id (from 'felt scenes')")->required();
 
   std::uint32_t body = 0;
   CLI::App* remove_cmd = app.add_subcommand("remove", "Remove a body");
@@ -269,6 +293,13 @@ int main(int argc, char** argv) {
       }
       return load(common, load_options);
     }
+    if (pause_cmd->parsed()) return pause(common);
+    if (resume_cmd->parsed()) return resume(common);
+    if (step_cmd->parsed()) return step(common, steps);
+    if (reset_cmd->parsed()) return reset(common);
+    if (save_cmd->parsed()) return save(common, state_file);
+    if (restore_cmd->parsed()) return restore(common, state_file);
+    if (destroy_cmd->parsed()) return destroy(common, destroyed_scene);
     if (cloth_cmd->parsed()) return add_cloth(common, cloth, body_json);
     if (solid_cmd->parsed()) return add_solid(common, solid, body_json);
     if (remove_cmd->parsed()) return remove_body(common, body);
@@ -305,6 +336,12 @@ int main(int argc, char** argv) {
       std::cerr << " (" << v1::ErrorCode_Name(e.code()).substr(std::strlen("ERROR_CODE_")) << ")";
     }
     std::cerr << "\n";
+    return 1;
+  } catch (const UsageError& e) {
+    std::cerr << "felt: " << e.what() << "\n";
+    return 2;
+  } catch (const LocalError& e) {
+    std::cerr << "felt: " << e.what() << "\n";
     return 1;
   }
 }

@@ -38,6 +38,19 @@ struct LoadOptions {
 int load(const Common& common, const LoadOptions& options);
 int stats(const Common& common);
 
+// control_commands.cpp: each prints the scene's status after the request (destroy: its id)
+int pause(const Common& common);
+int resume(const Common& common);
+int step(const Common& common, std::uint32_t steps);
+int reset(const Common& common);
+/// Saves the scene's state (SaveState with its data) to `file`, as protobuf's JSON mapping of
+/// SceneState.
+int save(const Common& common, const std::string& file);
+/// Restores a state `save` wrote (RestoreState with its data).
+int restore(const Common& common, const std::string& file);
+/// Destroys a running scene by id (0: the one --scene or --join puts the client in).
+int destroy(const Common& common, std::uint64_t scene);
+
 // body_commands.cpp
 struct ClothOptions {
   std::string name;
