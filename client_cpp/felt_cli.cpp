@@ -10,6 +10,7 @@
 
 #include "cli/command_errors.hpp"
 #include "cli/commands.hpp"
+#include "command_line/usage_status.hpp"
 #include "scheduling/latency_options.hpp"
 
 namespace {
@@ -55,11 +56,17 @@ void local_model_options(CLI::App* command, DeviceOptions& d) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"felt - command-line client of the Felt simulation service"};
+  CLI::App app{"felt " FELT_VERSION " - command-line client of the Felt simulation service"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", "felt " FELT_VERSION);
+  // the options below are taken after the command's name too (felt stats --server HOST:PORT):
+  // every command inherits the fallthrough to them
+  app.fallthrough();
   Common common;
   if (const char* token = std::getenv("FELT_TOKEN")) common.token = token;
-  app.add_option("--server", common.server, "feltd address HOST:PORT")->capture_default_str();
+  app.add_option("--server", common.server, "feltd address HOST:PORT (default: $FELT_SERVER)")
+      ->envname("FELT_SERVER")
+      ->capture_default_str();
   app.add_option("--token", common.token, "Token the server requires (default: $FELT_TOKEN)");
   // every thread of felt is on its haptic path (device loops, the replies' reader), and on a
   // machine shared with feltd a device loop must preempt the physics thread as soon as it wakes
@@ -270,7 +277,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 64))
       ->capture_default_str();
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return felt::usage_status(app, e);
+  }
   felt::LatencyOptions latency;
   latency.slice = std::chrono::microseconds(slice_us);
   latency.slice_inheritance = felt::SliceInheritance::kAlsoThreadsItStarts;
@@ -289,7 +300,7 @@ int main(int argc, char** argv) {
     if (load_cmd->parsed()) {
       if (load_options.name.empty() == load_options.json_file.empty()) {
         std::cerr << "felt: load takes a scene name or --json FILE\n";
-        return 2;
+        return felt::kUsageStatus;
       }
       return load(common, load_options);
     }
@@ -320,7 +331,7 @@ int main(int argc, char** argv) {
     if (touch_cmd->parsed()) {
       if (device.at.empty() && device.path.empty()) {
         std::cerr << "felt: touch needs --at X,Y,Z or --path\n";
-        return 2;
+        return felt::kUsageStatus;
       }
       return touch(common, device);
     }
@@ -339,7 +350,7 @@ int main(int argc, char** argv) {
     return 1;
   } catch (const UsageError& e) {
     std::cerr << "felt: " << e.what() << "\n";
-    return 2;
+    return felt::kUsageStatus;
   } catch (const LocalError& e) {
     std::cerr << "felt: " << e.what() << "\n";
     return 1;

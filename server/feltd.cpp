@@ -14,6 +14,7 @@
 #include <boost/asio.hpp>
 #include <nlohmann/json.hpp>
 
+#include "command_line/usage_status.hpp"
 #include "net/server.hpp"
 #include "runtime/batch_run.hpp"
 #include "scene/scene_loader.hpp"
@@ -392,6 +393,7 @@ int run(const RunOptions& options) {
 int main(int argc, char** argv) {
   CLI::App app{"feltd " FELT_VERSION " - simulation service for touching deformable things"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", "feltd " FELT_VERSION);
 
   ServeOptions serve_options;
   felt::net::ServerOptions& limits = serve_options.limits;
@@ -528,7 +530,11 @@ int main(int argc, char** argv) {
                    "Drive the devices from a --record CSV and compare their contacts with it")
       ->check(CLI::ExistingFile);
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return felt::usage_status(app, e);
+  }
   if (serve_cmd->parsed()) return serve(serve_options);
   return run(run_options);
 }

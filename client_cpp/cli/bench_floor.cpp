@@ -18,6 +18,7 @@
 #include <mutex>
 #include <thread>
 
+#include "cli/command_errors.hpp"
 #include "cli/commands.hpp"
 #include "cli/latency_table.hpp"
 #include "cli/progress.hpp"
@@ -98,7 +99,7 @@ struct Connection {
 
 int bench_floor(const BenchOptions& o) {
   if (o.clients < 1 || o.clients > 64) {
-    throw client::ClientError(felt::v1::ERROR_CODE_BAD_REQUEST, "--clients must be 1 to 64");
+    throw UsageError("--clients must be 1 to 64");
   }
   const int listener = ::socket(AF_INET, SOCK_STREAM, 0);
   sockaddr_in address{};
@@ -108,13 +109,11 @@ int bench_floor(const BenchOptions& o) {
   if (listener < 0 || ::bind(listener, reinterpret_cast<sockaddr*>(&address), length) != 0 ||
       ::listen(listener, o.clients) != 0 ||
       ::getsockname(listener, reinterpret_cast<sockaddr*>(&address), &length) != 0) {
-    throw client::ClientError(felt::v1::ERROR_CODE_INTERNAL,
-                              std::string("loopback listener: ") + std::strerror(errno));
+    throw LocalError(std::string("loopback listener: ") + std::strerror(errno));
   }
   const pid_t answerer = ::fork();
   if (answerer < 0) {
-    throw client::ClientError(felt::v1::ERROR_CODE_INTERNAL,
-                              std::string("fork: ") + std::strerror(errno));
+    throw LocalError(std::string("fork: ") + std::strerror(errno));
   }
   if (answerer == 0) answer(listener, o.clients);
   ::close(listener);
@@ -126,8 +125,7 @@ int bench_floor(const BenchOptions& o) {
     if (::connect(connection->fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0) {
       ::kill(answerer, SIGKILL);
       ::waitpid(answerer, nullptr, 0);
-      throw client::ClientError(felt::v1::ERROR_CODE_INTERNAL,
-                                std::string("connect: ") + std::strerror(errno));
+      throw LocalError(std::string("connect: ") + std::strerror(errno));
     }
     no_delay(connection->fd);
     Connection* mine = connection.get();

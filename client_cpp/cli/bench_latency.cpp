@@ -10,6 +10,7 @@
 #include <mutex>
 #include <thread>
 
+#include "cli/command_errors.hpp"
 #include "cli/commands.hpp"
 #include "cli/first_error.hpp"
 #include "cli/latency_table.hpp"
@@ -41,7 +42,7 @@ struct Device {
 
 int bench_latency(const Common& common, const BenchOptions& o) {
   if (o.clients < 1 || o.clients > 64) {
-    throw client::ClientError(v1::ERROR_CODE_BAD_REQUEST, "--clients must be 1 to 64");
+    throw UsageError("--clients must be 1 to 64");
   }
   FirstError error;  // any device's: every device stops (it outlives their handlers)
   std::vector<std::unique_ptr<Device>> devices;

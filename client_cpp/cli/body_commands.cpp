@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/command_errors.hpp"
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
 
@@ -19,7 +20,7 @@ namespace {
 std::string json_text(const std::string& json) {
   if (json.empty() || json.front() != '@') return json;
   std::ifstream in(json.substr(1));
-  if (!in) throw client::ClientError(v1::ERROR_CODE_BAD_REQUEST, "cannot read " + json.substr(1));
+  if (!in) throw UsageError("cannot read " + json.substr(1));
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();

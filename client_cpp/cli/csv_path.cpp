@@ -5,19 +5,15 @@
 #include <fstream>
 #include <sstream>
 
-#include "felt_client.hpp"
+#include "cli/command_errors.hpp"
 
 namespace felt::cli {
 
-namespace v1 = felt::v1;
-using client::ClientError;
-
 DevicePath read_csv_path(const std::string& file) {
   std::ifstream in(file);
-  if (!in) throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "cannot read " + file);
+  if (!in) throw UsageError("cannot read " + file);
   const auto fault = [&](int number, const std::string& why) {
-    return ClientError(v1::ERROR_CODE_BAD_REQUEST,
-                       file + ":" + std::to_string(number) + ": " + why);
+    return UsageError(file + ":" + std::to_string(number) + ": " + why);
   };
   DevicePath path;
   path.shape = DevicePath::Shape::kSamples;
@@ -48,7 +44,7 @@ DevicePath read_csv_path(const std::string& file) {
     }
     path.samples.push_back(s);
   }
-  if (path.samples.empty()) throw ClientError(v1::ERROR_CODE_BAD_REQUEST, file + ": no samples");
+  if (path.samples.empty()) throw UsageError(file + ": no samples");
   return path;
 }
 

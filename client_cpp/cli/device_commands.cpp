@@ -10,6 +10,7 @@
 #include <mutex>
 #include <thread>
 
+#include "cli/command_errors.hpp"
 #include "cli/commands.hpp"
 #include "cli/csv_path.hpp"
 #include "cli/first_error.hpp"
@@ -77,8 +78,7 @@ Sample& tick(const DevicePath& path, const std::vector<double>& times, std::size
 
 DevicePath make_path(const DeviceOptions& o) {
   const auto need = [](const std::vector<double>& v, const char* flag) {
-    if (v.size() != 3)
-      throw ClientError(v1::ERROR_CODE_BAD_REQUEST, std::string(flag) + " X,Y,Z is needed");
+    if (v.size() != 3) throw UsageError(std::string(flag) + " X,Y,Z is needed");
   };
   DevicePath path;
   path.period = o.period;
@@ -95,14 +95,13 @@ DevicePath make_path(const DeviceOptions& o) {
     path.a = vec(o.center);
     path.axis = vec(o.axis);
     path.radius = o.radius;
-    if (path.axis.norm() == 0)
-      throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "--axis must not be 0");
+    if (path.axis.norm() == 0) throw UsageError("--axis must not be 0");
   } else if (o.path == "csv") {
     path = read_csv_path(o.csv);
   } else {
-    throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "--path must be line, circle, press or csv");
+    throw UsageError("--path must be line, circle, press or csv");
   }
-  if (!(o.period > 0)) throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "--period must be > 0");
+  if (!(o.period > 0)) throw UsageError("--period must be > 0");
   return path;
 }
 
@@ -280,7 +279,7 @@ void write_log(const std::string& file, const std::vector<Sample>& samples) {
         << "," << r.contact_point().z() << "," << r.grabbing() << "," << s.round_trip_us << ","
         << r.proxy().x() << "," << r.proxy().y() << "," << r.proxy().z() << "\n";
   }
-  if (!out) throw ClientError(v1::ERROR_CODE_UNSPECIFIED, "cannot write " + file);
+  if (!out) throw LocalError("cannot write " + file);
 }
 
 void summarize(const std::vector<Sample>& samples) {
@@ -337,7 +336,7 @@ int touch(const Common& common, const DeviceOptions& o) {
     return single_touch(common, o);
   }
   if (!(o.rate >= 1 && o.rate <= 10'000)) {
-    throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "--rate must be 1 to 10000 Hz");
+    throw UsageError("--rate must be 1 to 10000 Hz");
   }
   const DevicePath path = make_path(o);
   const std::vector<double> times = ticks(path_duration(o, path), o.rate);
@@ -376,7 +375,7 @@ int record(const Common& common, const DeviceOptions& o, const std::string& out_
     write_record(out, r);
     ++written;
   }
-  if (!out) throw ClientError(v1::ERROR_CODE_UNSPECIFIED, "cannot write " + out_file);
+  if (!out) throw LocalError("cannot write " + out_file);
   std::printf("%zu updates recorded to %s\n", written, out_file.c_str());
   summarize(samples);
   return 0;
@@ -385,8 +384,8 @@ int record(const Common& common, const DeviceOptions& o, const std::string& out_
 int replay(const Common& common, const std::string& file, double tolerance) {
   std::ifstream in(file);
   auto records = in ? read_recording(in) : std::unexpected(std::string("cannot open the file"));
-  if (!records) throw ClientError(v1::ERROR_CODE_BAD_REQUEST, file + ": " + records.error());
-  if (records->empty()) throw ClientError(v1::ERROR_CODE_BAD_REQUEST, file + ": no records");
+  if (!records) throw UsageError(file + ": " + records.error());
+  if (records->empty()) throw UsageError(file + ": no records");
   DevicePath path;
   path.shape = DevicePath::Shape::kSamples;
   std::vector<double> times;

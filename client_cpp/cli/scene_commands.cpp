@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "cli/command_errors.hpp"
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
 #include "wire/host_port.hpp"
@@ -17,7 +18,7 @@ namespace {
 
 wire::HostPort address_of(const Common& common) {
   const auto address = wire::parse_host_port(common.server);
-  if (!address) throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "--server: " + address.error());
+  if (!address) throw UsageError("--server: " + address.error());
   return *address;
 }
 
@@ -106,7 +107,7 @@ int load(const Common& common, const LoadOptions& options) {
   v1::LoadScene& load = *message.mutable_load_scene();
   if (!options.json_file.empty()) {
     std::ifstream in(options.json_file);
-    if (!in) throw ClientError(v1::ERROR_CODE_BAD_REQUEST, "cannot read " + options.json_file);
+    if (!in) throw UsageError("cannot read " + options.json_file);
     std::ostringstream text;
     text << in.rdbuf();
     load.set_json(text.str());

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "cli/command_errors.hpp"
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
 #include "frame_writers.hpp"
@@ -12,8 +13,7 @@ namespace felt::cli {
 int watch(const Common& common, const WatchOptions& options) {
   client::MeshFormat format;
   if (!client::parse_mesh_format(options.format, format)) {
-    std::cerr << "felt: --format must be obj, ply or vtk\n";
-    return 2;
+    throw UsageError("--format must be obj, ply or vtk");
   }
   client::Client client;
   connect(client, common);
