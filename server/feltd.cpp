@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command_line/usage_status.hpp"
+#include "net/endpoint_text.hpp"
 #include "net/server.hpp"
 #include "runtime/batch_run.hpp"
 #include "scene/scene_loader.hpp"
@@ -35,6 +36,7 @@ struct ServeOptions {
   std::string scene_dir = "scenes";
   std::vector<std::string> scenes;
   bool status = false;
+  std::string log_level = "info";
   unsigned io_threads = 2;
   int realtime_priority = 0;       ///< SCHED_FIFO priority of the network threads; 0: normal policy
   int network_slice_us = 100;      ///< time slice the network threads ask for; 0: the kernel's
@@ -88,13 +90,6 @@ void print_status(felt::SceneRegistry& scenes, SceneId scene, felt::net::Server&
   last_haptic_updates = stats.haptic_updates;
 }
 
-/// HOST:PORT as a URL names it ([v6]:PORT).
-std::string host_port(const asio::ip::tcp::endpoint& endpoint) {
-  const auto ip = endpoint.address();
-  return (ip.is_v6() ? "[" + ip.to_string() + "]" : ip.to_string()) + ":" +
-         std::to_string(endpoint.port());
-}
-
 int serve(const ServeOptions& options) {
   const auto address = felt::wire::parse_host_port(options.listen);
   if (!address) {
@@ -108,8 +103,10 @@ int serve(const ServeOptions& options) {
     return 2;
   }
   felt::SceneRegistry scenes;
-  felt::net::ServerContext context{scenes, felt::SceneDirectory(options.scene_dir), options.limits,
-                                   FELT_VERSION};
+  felt::net::ServerContext context{
+      scenes, felt::SceneDirectory(options.scene_dir), options.limits, FELT_VERSION,
+      felt::net::ServerLog(*felt::net::parse_log_level(options.log_level))};
+  const felt::net::ServerLog& log = context.log;
   // named as feltd's other threads are (for top -H, perf and scripts/trace-round-trips); the
   // encoder steps aside for the network threads as the physics threads do. The loader does
   // not: a scene it starts gets its servo thread, which is on the haptic path, at the loader's
@@ -141,8 +138,11 @@ int serve(const ServeOptions& options) {
         felt::SceneLimits{options.limits.max_bodies_per_scene,
                           options.limits.max_particles_per_scene});
     runner->start(options.limits.background_nice);
+    const std::string name = runner->name();
     const SceneId id = scenes.add(std::move(runner));
     if (context.default_scene == 0) context.default_scene = id;
+    log.info("scene " + std::to_string(id) + " \"" + name + "\" loaded from " + file +
+             (id == context.default_scene ? ", the scene new clients join" : ""));
   }
 
   // the spinners start before the server listens, so that they are there for its first client
@@ -156,7 +156,7 @@ int serve(const ServeOptions& options) {
     scenes.stop_all();
     return 1;
   }
-  std::printf("listening on %s\n", host_port(*endpoint).c_str());
+  std::printf("listening on %s\n", felt::net::endpoint_text(*endpoint).c_str());
   if (web_address) {
     const auto web =
         server.listen_web((*web_address)->host, (*web_address)->port, options.web_root);
@@ -165,10 +165,9 @@ int serve(const ServeOptions& options) {
       scenes.stop_all();
       return 1;
     }
-    std::printf("web on http://%s/\n", host_port(*web).c_str());
+    std::printf("web on http://%s/\n", felt::net::endpoint_text(*web).c_str());
     if (!std::filesystem::exists(std::filesystem::path(options.web_root) / "index.html")) {
-      std::fprintf(stderr, "feltd: --web-root %s has no index.html: build the page first\n",
-                   options.web_root.c_str());
+      log.warning("--web-root " + options.web_root + " has no index.html: build the page first");
     }
   }
   std::fflush(stdout);
@@ -203,8 +202,10 @@ int serve(const ServeOptions& options) {
           if (!ec) drain(deadline);
         });
       };
-  signals.async_wait([&](const boost::system::error_code& ec, int) {
+  signals.async_wait([&](const boost::system::error_code& ec, int signal) {
     if (ec) return;
+    log.info(std::string("shutting down on ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") + ", " +
+             std::to_string(server.client_count()) + " clients connected");
     status_timer.cancel();
     // each scene finishes its step, then every client hears that the server stops and its
     // connection closes once what is queued for it is written
@@ -217,9 +218,7 @@ int serve(const ServeOptions& options) {
   // real-time policy, they answer as soon as an update arrives instead of waiting behind the
   // physics threads for a core (apply() scheduled this one)
   for (const std::string& note : latency.notes()) std::printf("%s\n", note.c_str());
-  for (const std::string& error : latency.errors()) {
-    std::fprintf(stderr, "feltd: %s\n", error.c_str());
-  }
+  for (const std::string& error : latency.errors()) log.error(error);
   if (options.limits.background_nice != 0) {
     std::printf("physics and frame encoder: nice %d\n", options.limits.background_nice);
   }
@@ -234,6 +233,7 @@ int serve(const ServeOptions& options) {
   context.frame_encoder.join();
   server.close_all();
   io.run_down();
+  log.info("stopped, exit status 0");
   return 0;
 }
 
@@ -417,6 +417,12 @@ int main(int argc, char** argv) {
                    "Scene file to load at start; the first is the one new clients join")
       ->check(CLI::ExistingFile);
   serve_cmd->add_flag("--status", serve_options.status, "Print a status line every second");
+  serve_cmd
+      ->add_option("--log-level", serve_options.log_level,
+                   "What to log on standard error, one line each: off, error, warning (refusals "
+                   "of a limit), info (clients, scenes, shutdown) or debug (connections)")
+      ->check(CLI::IsMember({"off", "error", "warning", "info", "debug"}))
+      ->capture_default_str();
   serve_cmd
       ->add_option("--io-threads", serve_options.io_threads,
                    "Threads that run the network (each client's requests stay in order)")

@@ -25,7 +25,7 @@ void OutboundQueue::push(const felt::v1::ServerMessage& message) {
     // the client does not read its replies; dropping them would break the protocol
     std::string().swap(queued_);
     stop();
-    listener_.on_connection_lost();
+    listener_.on_backlog_exceeded(max_backlog_bytes_);
     return;
   }
   write();

@@ -21,9 +21,10 @@ class OutboundQueue {
    public:
     /// The frame in the slot was handed to the transport.
     virtual void on_frame_written() = 0;
-    /// A write failed, or the client let more than the backlog pile up: the connection must
-    /// end now.
+    /// A write failed: the connection must end now.
     virtual void on_connection_lost() = 0;
+    /// The client let more than the backlog pile up unread: the connection must end now.
+    virtual void on_backlog_exceeded(std::size_t max_backlog_bytes) = 0;
     /// close_after_queued() was called and everything queued has gone out.
     virtual void on_drained() = 0;
 

@@ -87,6 +87,9 @@ void start_scene(Session& session, std::uint64_t id, DocumentSource read, bool s
         pending->fail(v1::ERROR_CODE_CANCELLED, "the scene stopped before it could be joined");
         return;
       }
+      context.log.info(session->who() + " loaded scene " + std::to_string(scene_id) + " \"" +
+                       runner->name() + "\"" + (runner->access().shared ? ", shared" : "") +
+                       (runner->access().persistent ? ", kept" : ""));
       v1::ServerMessage message;
       fill_scene_loaded(scene_id, *runner, *message.mutable_scene_loaded());
       pending->send(std::move(message));
@@ -228,6 +231,8 @@ void handle_destroy_scene(Session& session, std::uint64_t id, const v1::DestroyS
   scene->members().broadcast_to_all(std::move(destroyed));
   if (session.scene_id() == scene_id) session.leave_scene();
   context.scenes.remove(scene_id);
+  context.log.info(session.who() + " destroyed scene " + std::to_string(scene_id) + " \"" +
+                   scene->name() + "\"");
   reply(session, id, [&](v1::ServerMessage& message) {
     message.mutable_scene_destroyed()->set_scene_id(scene_id);
   });

@@ -9,6 +9,7 @@
 
 #include <boost/asio/thread_pool.hpp>
 
+#include "net/server_log.hpp"
 #include "runtime/scene_registry.hpp"
 #include "scene/scene_directory.hpp"
 #include "scheduling/idle_core_spinners.hpp"
@@ -46,6 +47,8 @@ struct ServerContext {
   SceneDirectory scene_directory;
   ServerOptions options;
   std::string server_version;
+  /// what happens, one line each, on standard error (feltd serve --log-level)
+  ServerLog log;
   SceneId default_scene = 0;  ///< joined by every new session; 0 when there is none
   std::atomic<std::uint32_t> next_client_id{1};
   std::atomic<std::uint32_t> clients{0};  ///< sessions with an open connection

@@ -18,6 +18,17 @@ namespace {
 constexpr int kRequestsPerTurn = 32;
 /// A proxy not updated for this long lets go of the surface it kept from its last update.
 constexpr auto kProxyIdle = std::chrono::seconds(1);
+/// A session logs one refusal of a limit in this time at most.
+constexpr auto kRefusalLogInterval = std::chrono::seconds(1);
+
+/// The errors that refuse a limit (docs/protocol.md 4.2): those the log reports.
+bool refuses_a_limit(v1::ErrorCode code) {
+  return code == v1::ERROR_CODE_LIMIT_EXCEEDED || code == v1::ERROR_CODE_FRAME_TOO_LARGE;
+}
+
+std::string code_name(v1::ErrorCode code) {
+  return v1::ErrorCode_Name(code).substr(std::string_view("ERROR_CODE_").size());
+}
 
 }  // namespace
 
@@ -64,6 +75,7 @@ void Session::hold_while_busy() {
 }
 
 void Session::start() {
+  context_.log.debug("connection from " + transport_->peer());
   counted_ = true;
   ++context_.clients;
   hold_while_busy();
@@ -80,6 +92,9 @@ void Session::start_hello_deadline() {
   hello_timer_.async_wait([weak = weak_from_this()](const boost::system::error_code& ec) {
     const auto self = weak.lock();
     if (ec || !self || self->greeted_ || self->closed_ || self->outbound_.closing()) return;
+    self->context_.log.warning(
+        self->who() + " from " + self->transport_->peer() + " closed: no Hello within " +
+        std::to_string(self->context_.options.hello_timeout_ms) + " ms (--hello-timeout-ms)");
     self->send_error(0, v1::ERROR_CODE_HELLO_REQUIRED,
                      "no Hello within " + std::to_string(self->context_.options.hello_timeout_ms) +
                          " ms; the connection closes");
@@ -127,6 +142,44 @@ void Session::shutdown(bool gracefully) {
     counted_ = false;
     --context_.clients;
   }
+  if (!greeted_) {
+    context_.log.debug("connection from " + transport_->peer() + " closed before Hello");
+    return;
+  }
+  std::string left = who() + " from " + transport_->peer() + " left after " +
+                     std::to_string(requests_) + " requests";
+  if (refusals_not_logged_ > 0) {
+    left += " (" + std::to_string(refusals_not_logged_) + " more refusals not logged)";
+  }
+  context_.log.info(left);
+}
+
+void Session::on_backlog_exceeded(std::size_t max_backlog_bytes) {
+  context_.log.warning(who() + " from " + transport_->peer() + " dropped: more than " +
+                       std::to_string(max_backlog_bytes) +
+                       " bytes of replies unread (--max-reply-backlog)");
+  shutdown(false);
+}
+
+std::string Session::who() const {
+  std::string text = "client " + std::to_string(id_);
+  if (greeted_) text += " \"" + client_name_ + "\"";
+  return text;
+}
+
+void Session::log_refusal(const std::string& what) {
+  const auto now = SteadyClock::now();
+  if (now - last_refusal_logged_ < kRefusalLogInterval) {
+    ++refusals_not_logged_;
+    return;
+  }
+  std::string line = who() + " from " + transport_->peer() + " refused: " + what;
+  if (refusals_not_logged_ > 0) {
+    line += " (and " + std::to_string(refusals_not_logged_) + " more not logged)";
+  }
+  context_.log.warning(line);
+  last_refusal_logged_ = now;
+  refusals_not_logged_ = 0;
 }
 
 void Session::read() {
@@ -181,6 +234,7 @@ void Session::send(const v1::ServerMessage& message) {
 }
 
 void Session::send_error(std::uint64_t request_id, v1::ErrorCode code, const std::string& text) {
+  if (refuses_a_limit(code)) log_refusal(text + " (" + code_name(code) + ")");
   v1::ServerMessage reply;
   fill_error(request_id, code, text, reply);
   send(reply);
@@ -198,6 +252,9 @@ std::shared_ptr<PendingReply> Session::defer(std::uint64_t request_id) {
 
 void Session::end_deferred(const v1::ServerMessage& reply) {
   --in_flight_;
+  if (reply.has_error() && refuses_a_limit(reply.error().code())) {
+    log_refusal(reply.error().message() + " (" + code_name(reply.error().code()) + ")");
+  }
   send(reply);
 }
 
@@ -215,6 +272,7 @@ void Session::set_greeted(std::string client_name) {
   greeted_ = true;
   hello_timer_.cancel();
   client_name_ = std::move(client_name);
+  if (first) context_.log.info(who() + " connected from " + transport_->peer());
   // a client is in the server's default scene from its first Hello: before it, it hears nothing
   if (first && !scene_ && context_.default_scene != 0) join(context_.default_scene);
 }
@@ -258,9 +316,13 @@ void Session::leave_scene(bool quietly) {
   if (!scene_) return;
   if (!quietly) announce(SceneEvent::Kind::kClientLeft);
   const SceneId left = scene_id_;
+  const std::string name = scene_->name();
   forget_scene();
   // a scene a client loaded lives as long as some session is in it
-  context_.scenes.leave(left, id_);
+  if (context_.scenes.leave(left, id_)) {
+    context_.log.info("scene " + std::to_string(left) + " \"" + name +
+                      "\" removed: its last client left");
+  }
 }
 
 void Session::on_scene_event(SceneId scene, const SceneEvent& event) {

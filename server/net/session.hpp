@@ -46,6 +46,10 @@ class Session : public std::enable_shared_from_this<Session>, private OutboundQu
   // The rest is for the request handlers, on the session's strand.
   ServerContext& context() { return context_; }
   ClientId client_id() const { return id_; }
+  /// The client as the log names it: client 3 "felt-cli" (the name once it said Hello).
+  std::string who() const;
+  /// Where its connection comes from: "127.0.0.1:40112 over TCP".
+  const std::string& peer() const { return transport_->peer(); }
 
   /// Queues a message; replies and events are never dropped, but a client that lets too many
   /// pile up is disconnected.
@@ -114,6 +118,7 @@ class Session : public std::enable_shared_from_this<Session>, private OutboundQu
   // OutboundQueue::Listener
   void on_frame_written() override;
   void on_connection_lost() override { shutdown(false); }
+  void on_backlog_exceeded(std::size_t max_backlog_bytes) override;
   void on_drained() override { shutdown(true); }
 
   /// Lets the outbound queue and the frames keep the session alive while they write or encode.
@@ -133,6 +138,9 @@ class Session : public std::enable_shared_from_this<Session>, private OutboundQu
   void forget_scene();
   std::uint64_t key_of(std::uint32_t proxy_id) const;
   void close_proxies();
+  /// Logs a refusal of a limit, at most one a second per session (the rest are counted and
+  /// said with the next), so that a client that keeps hitting a limit cannot flood the log.
+  void log_refusal(const std::string& what);
 
   std::unique_ptr<Transport> transport_;
   ServerContext& context_;
@@ -154,6 +162,8 @@ class Session : public std::enable_shared_from_this<Session>, private OutboundQu
   std::shared_ptr<SceneRunner> scene_;
   std::shared_ptr<Membership> membership_;  ///< how the scene reaches this session
   std::map<std::uint32_t, HapticProxy> proxies_;
+  SteadyClock::time_point last_refusal_logged_{};
+  std::uint64_t refusals_not_logged_ = 0;
 };
 
 }  // namespace felt::net

@@ -59,7 +59,11 @@ void handle_hello(Session& session, std::uint64_t id, const v1::Hello& hello) {
     session.send_error(
         id, v1::ERROR_CODE_UNAUTHORIZED,
         last ? "wrong or missing token; the connection closes" : "wrong or missing token");
-    if (last) session.close_after_replies();
+    if (last) {
+      session.context().log.warning(session.who() + " from " + session.peer() + " closed after " +
+                                    std::to_string(Session::kMaxRefusedHellos) + " wrong tokens");
+      session.close_after_replies();
+    }
     return;
   }
   session.set_greeted(truncated_utf8(hello.client_name(), kMaxClientName));

@@ -2,6 +2,8 @@
 
 #include <boost/asio/write.hpp>
 
+#include "net/endpoint_text.hpp"
+
 namespace felt::net {
 
 namespace asio = boost::asio;
@@ -11,6 +13,8 @@ TcpTransport::TcpTransport(asio::ip::tcp::socket socket, std::size_t max_message
   // send() writes from the handler that has something to send, and must never wait; a socket
   // that cannot be made so is closed, and the session ends at its first read
   boost::system::error_code ec;
+  const auto remote = socket_.remote_endpoint(ec);
+  peer_ = (ec ? std::string("a closed connection") : endpoint_text(remote)) + " over TCP";
   socket_.non_blocking(true, ec);
   if (ec) socket_.close(ec);
 }

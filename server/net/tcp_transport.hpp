@@ -21,12 +21,14 @@ class TcpTransport final : public Transport {
   void close() override;
   void finish() override { close(); }
   bool is_open() const override { return socket_.is_open(); }
+  const std::string& peer() const override { return peer_; }
 
  private:
   boost::asio::ip::tcp::socket socket_;
   Executor executor_;
   wire::FrameDecoder decoder_;
   std::array<std::uint8_t, 16 * 1024> read_buffer_;
+  std::string peer_;
 };
 
 }  // namespace felt::net

@@ -48,6 +48,9 @@ class Transport {
   /// Ends the connection after what was sent (the WebSocket closing handshake).
   virtual void finish() = 0;
   virtual bool is_open() const = 0;
+
+  /// Where the connection comes from, as the log names it: "127.0.0.1:40112 over TCP".
+  virtual const std::string& peer() const = 0;
 };
 
 }  // namespace felt::net

@@ -5,6 +5,8 @@
 
 #include <boost/beast/core/buffers_range.hpp>
 
+#include "net/endpoint_text.hpp"
+
 namespace felt::net {
 
 namespace asio = boost::asio;
@@ -24,6 +26,9 @@ WebSocketTransport::WebSocketTransport(std::unique_ptr<Stream> stream,
     : stream_(std::move(stream)),
       executor_(stream_->get_executor()),
       max_message_bytes_(max_message_bytes) {
+  boost::system::error_code ec;
+  const auto remote = stream_->next_layer().remote_endpoint(ec);
+  peer_ = (ec ? std::string("a closed connection") : endpoint_text(remote)) + " over WebSocket";
   stream_->binary(true);
   // the limit is the session's, checked as the bytes come: Beast's own refuses a message by
   // failing the connection at once, before the client could be told why

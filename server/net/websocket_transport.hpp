@@ -29,6 +29,7 @@ class WebSocketTransport final : public Transport {
   void close() override;
   void finish() override;
   bool is_open() const override { return stream_->is_open(); }
+  const std::string& peer() const override { return peer_; }
 
  private:
   /// Sends the frame at `offset` of `frames`, then the ones after it.
@@ -43,6 +44,7 @@ class WebSocketTransport final : public Transport {
   bool message_taken_ = false;
   wire::DecodeStatus failure_ = wire::DecodeStatus::kNeedMore;
   WriteHandler write_done_;
+  std::string peer_;
 };
 
 }  // namespace felt::net

@@ -77,17 +77,18 @@ std::shared_ptr<SceneRunner> SceneRegistry::join(SceneId id, SceneMembers::Membe
   return found->runner;
 }
 
-void SceneRegistry::leave(SceneId id, ClientId client) {
+bool SceneRegistry::leave(SceneId id, ClientId client) {
   std::shared_ptr<SceneRunner> removed;
   {
     std::lock_guard lock(mutex_);
     Slot* found = slot(id);
-    if (!found) return;
+    if (!found) return false;
     found->runner->members().leave(client);
-    if (found->runner->members().count() > 0 || found->runner->access().persistent) return;
+    if (found->runner->members().count() > 0 || found->runner->access().persistent) return false;
     removed = std::move(found->runner);
   }
   retire(std::move(removed));
+  return true;
 }
 
 bool SceneRegistry::remove(SceneId id) {

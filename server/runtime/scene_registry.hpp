@@ -36,8 +36,8 @@ class SceneRegistry {
   /// lock as leave(), so a scene is never removed between being found and being joined.
   std::shared_ptr<SceneRunner> join(SceneId id, SceneMembers::Member member);
   /// Takes `client` out of scene `id`; a scene that is not persistent is removed when its last
-  /// member leaves, and stopped.
-  void leave(SceneId id, ClientId client);
+  /// member leaves, and stopped. True when the scene was removed.
+  bool leave(SceneId id, ClientId client);
   /// Removes a scene and stops it; false for an unknown id.
   bool remove(SceneId id);
   /// Stops every scene's physics thread, the removed ones' too (shutdown).

@@ -74,6 +74,7 @@ TEST_F(FeltCommandLineTest, UsageErrorsExitWithTwoAndNoServerCode) {
       {FELTD_PATH},
       {FELTD_PATH, "serve", "--no-such-option"},
       {FELTD_PATH, "serve", "--listen", "nowhere"},
+      {FELTD_PATH, "serve", "--log-level", "chatty"},
   };
   for (const auto& argv : wrong) {
     std::vector<std::string> args = argv;

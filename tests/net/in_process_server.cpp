@@ -5,7 +5,9 @@
 namespace felt::net {
 
 InProcessServer::InProcessServer(Scene scene, ServerOptions options)
-    : context_{scenes_, SceneDirectory(FELT_SCENE_DIR), std::move(options), "test"} {
+    // errors only: the fuzz target would log a line for each of its many connections
+    : context_{scenes_, SceneDirectory(FELT_SCENE_DIR), std::move(options), "test",
+               ServerLog(LogLevel::kError)} {
   auto runner = std::make_shared<SceneRunner>(std::move(scene), SceneAccess{0, true, true});
   runner->start();
   context_.default_scene = scenes_.add(std::move(runner));

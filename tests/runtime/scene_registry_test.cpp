@@ -43,8 +43,10 @@ TEST(SceneRegistry, ALoadedSceneHasItsOwnerAsAMemberFromTheStart) {
   // the loader's session joining for real takes the place it had, it is not in twice
   registry.join(id, {kLoader, "loader", {}});
   EXPECT_EQ(scene->members().count(), 2u);
-  registry.leave(id, kLoader);
-  EXPECT_TRUE(scene->may_control(kOther));  // its owner is gone: anyone's
+  EXPECT_FALSE(registry.leave(id, kLoader));  // the other is still in it
+  EXPECT_TRUE(scene->may_control(kOther));    // its owner is gone: anyone's
+  EXPECT_TRUE(registry.leave(id, kOther));    // the last one out: the scene goes
+  EXPECT_EQ(registry.find(id), nullptr);
 }
 
 TEST(SceneRegistry, KeptScenesAreCountedPerOwner) {
