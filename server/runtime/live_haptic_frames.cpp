@@ -1,0 +1,51 @@
+#include "runtime/live_haptic_frames.hpp"
+
+namespace felt {
+namespace {
+
+// frames are made while some proxy was rendered this recently
+constexpr auto kIdle = std::chrono::seconds(1);
+// retired frames kept for reuse: the latest, one a reader may still hold, one free
+constexpr std::size_t kPoolSize = 3;
+
+}  // namespace
+
+std::shared_ptr<const HapticFrame> LiveHapticFrames::current() {
+  const SteadyClock::time_point now = SteadyClock::now();
+  const SteadyClock::time_point last(
+      SteadyClock::duration(last_use_.exchange(now.time_since_epoch().count())));
+  auto frame = latest_.load();
+  if (frame && now - last < kIdle) return frame;
+  // the physics thread may have stopped making frames: start from a still copy of the latest
+  std::lock_guard lock(mutex_);
+  frame = latest_.load();
+  // unless another thread made one while this one waited for the lock
+  if (!frame || (frame->to != live_.latest() && frame->published < now)) {
+    frame = make_pooled(nullptr, now);
+  }
+  return frame;
+}
+
+void LiveHapticFrames::publish(SteadyClock::time_point now) {
+  const SteadyClock::time_point last(SteadyClock::duration(last_use_.load()));
+  if (now - last >= kIdle) return;
+  std::lock_guard lock(mutex_);
+  make_pooled(latest_.load().get(), now);
+}
+
+std::shared_ptr<HapticFrame> LiveHapticFrames::make_pooled(const HapticFrame* previous,
+                                                           SteadyClock::time_point now) {
+  std::shared_ptr<HapticFrame> recycled;
+  for (const auto& retired : pool_) {
+    if (retired.use_count() == 1) recycled = retired;
+  }
+  auto frame = make_haptic_frame(live_.latest(), previous, recycled, structure_, now);
+  if (!recycled) {
+    if (pool_.size() == kPoolSize) pool_.erase(pool_.begin());
+    pool_.push_back(frame);
+  }
+  latest_.store(frame);
+  return frame;
+}
+
+}  // namespace felt

@@ -1,0 +1,69 @@
+#pragma once
+// A scene as its physics thread keeps it between steps: the World, its pacing, the steps and
+// forces requests asked for, who owns each body; and what it publishes for the other threads
+// (snapshots and the body catalog). Everything but the publications belongs to the physics
+// thread once it has started (before that, to whoever starts it); the publications are read by
+// any thread.
+
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "runtime/body_catalog.hpp"
+#include "runtime/clock.hpp"
+#include "runtime/pacer.hpp"
+#include "runtime/published.hpp"
+#include "runtime/scene_event.hpp"
+#include "runtime/scene_status.hpp"
+#include "runtime/snapshot.hpp"
+#include "runtime/step_requests.hpp"
+#include "runtime/timed_forces.hpp"
+#include "scene/scene.hpp"
+
+namespace felt {
+
+class LiveScene {
+ public:
+  /// `scene`, its bodies owned by `owner`, paced by `clock`; publishes its first snapshot and
+  /// catalog.
+  LiveScene(Scene scene, ClientId owner, const Clock& clock);
+
+  Scene scene;
+  Pacer pacer;
+  StepRequests step_requests;
+  TimedForces timed_forces;
+
+  SceneStatus status() const;
+  /// An event of `kind` caused by `by`, stamped with the scene's step, time and time scale.
+  SceneEvent event(SceneEvent::Kind kind, ClientId by) const;
+
+  /// The latest snapshot (never null) and catalog (never null); any thread.
+  std::shared_ptr<const SceneSnapshot> latest() const { return latest_.load(); }
+  std::shared_ptr<const BodyCatalog> bodies() const { return catalog_.load(); }
+  /// Snapshots published so far: the latest one's version.
+  std::uint64_t published() const { return published_; }
+
+  /// Publishes a snapshot of the world now.
+  void publish();
+  /// Publishes a snapshot and a catalog after bodies came or went.
+  void publish_bodies();
+  /// Every body of the scene now belongs to its owner (a new or a reset scene).
+  void own_scene_bodies();
+  /// Body `id`, just added by `client`, belongs to it.
+  void add_owner(BodyId id, ClientId client) { owners_.emplace_back(id, client); }
+  /// Body `id` is gone.
+  void forget_owner(BodyId id);
+
+ private:
+  void publish_catalog();
+
+  ClientId owner_;
+  Published<SceneSnapshot> latest_;
+  std::uint64_t published_ = 0;
+  Published<BodyCatalog> catalog_;
+  /// the owner of each body, by id; published through catalog_
+  std::vector<std::pair<BodyId, ClientId>> owners_;
+};
+
+}  // namespace felt

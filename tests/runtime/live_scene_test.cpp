@@ -1,0 +1,74 @@
+#include "runtime/live_scene.hpp"
+
+#include <gtest/gtest.h>
+
+#include "runner_fixtures.hpp"
+
+namespace felt {
+namespace {
+
+TEST(LiveScene, PublishesVersionedSnapshotsThatKeepWhatTheyShowed) {
+  ManualClock clock;
+  LiveScene live(flat_cloth_scene(Vec3(0, -9.81, 0)), 0, clock);
+  const auto first = live.latest();
+  EXPECT_EQ(first->version, 1u);  // the scene as it was built is published at once
+  EXPECT_EQ(live.published(), 1u);
+  live.scene.world.step();
+  live.publish();
+  const auto second = live.latest();
+  EXPECT_EQ(second->version, 2u);
+  EXPECT_EQ(second->step, 1u);
+  EXPECT_EQ(first->step, 0u);
+  EXPECT_NE(second->bodies[0].positions, first->bodies[0].positions);
+}
+
+TEST(LiveScene, TheCatalogNamesEachBodysOwnerOncePublished) {
+  ManualClock clock;
+  const ClientId loader = 7;
+  LiveScene live(flat_cloth_scene(), loader, clock);
+  ASSERT_EQ(live.bodies()->bodies.size(), 1u);
+  const BodyId sheet = live.bodies()->bodies[0].body_id;
+  EXPECT_EQ(live.bodies()->bodies[0].owner, loader);
+
+  Collider floor;
+  floor.center = Vec3(0, -1, 0);  // a plane facing up
+  const BodyId added = live.scene.world.add_collider(floor);
+  live.add_owner(added, 9);
+  const auto before = live.bodies();
+  EXPECT_EQ(before->find(added), nullptr);  // not before it is published
+  const std::uint64_t published = live.published();
+  live.publish_bodies();
+  EXPECT_EQ(live.published(), published + 1);  // a snapshot with the catalog
+  ASSERT_NE(live.bodies()->find(added), nullptr);
+  EXPECT_EQ(live.bodies()->find(added)->owner, 9u);
+  EXPECT_EQ(live.bodies()->find(sheet)->owner, loader);
+
+  live.scene.world.remove_body(added);
+  live.forget_owner(added);
+  live.publish_bodies();
+  EXPECT_EQ(live.bodies()->find(added), nullptr);
+  EXPECT_EQ(live.bodies()->bodies.size(), 1u);
+}
+
+TEST(LiveScene, StatusAndEventsCarryTheScenesClockAndScale) {
+  ManualClock clock;
+  LiveScene live(flat_cloth_scene(), 0, clock);
+  live.scene.world.step();
+  live.scene.world.step();
+  live.pacer.pause();
+  live.pacer.set_scale(0.5);
+  const SceneStatus status = live.status();
+  EXPECT_EQ(status.step, 2u);
+  EXPECT_DOUBLE_EQ(status.sim_time, 0.002);
+  EXPECT_TRUE(status.paused);
+  EXPECT_EQ(status.time_scale, 0.5);
+  const SceneEvent event = live.event(SceneEvent::Kind::kPaused, 4);
+  EXPECT_EQ(event.kind, SceneEvent::Kind::kPaused);
+  EXPECT_EQ(event.client, 4u);
+  EXPECT_EQ(event.step, 2u);
+  EXPECT_DOUBLE_EQ(event.sim_time, 0.002);
+  EXPECT_EQ(event.time_scale, 0.5);
+}
+
+}  // namespace
+}  // namespace felt
