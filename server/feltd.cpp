@@ -35,6 +35,8 @@ struct ServeOptions {
   std::string web_root = FELT_WEB_ROOT;  ///< the page's build folder
   std::string scene_dir = "scenes";
   std::vector<std::string> scenes;
+  /// who may pause, step, scale, reset, save and restore the --scene scenes: anyone, none
+  std::string server_scenes_control = "anyone";
   bool status = false;
   std::string log_level = "info";
   unsigned io_threads = 2;
@@ -129,9 +131,11 @@ int serve(const ServeOptions& options) {
       std::cerr << "feltd: " << file << ": " << scene.error().what() << "\n";
       return 2;
     }
-    // the server's own scenes are shared by everyone in them and stay while nobody is
+    // the server's own scenes are shared by everyone in them and stay while nobody is; the
+    // operator says whether clients control them
     auto runner = std::make_shared<felt::SceneRunner>(
-        std::move(*scene), felt::SceneAccess{0, true, true},
+        std::move(*scene),
+        felt::SceneAccess{0, true, true, options.server_scenes_control == "anyone"},
         [document = std::move(*document), load_options = scene_options(options.scene_dir)] {
           return felt::load_scene(document, load_options);
         },
@@ -416,6 +420,12 @@ int main(int argc, char** argv) {
       ->add_option("--scene", serve_options.scenes,
                    "Scene file to load at start; the first is the one new clients join")
       ->check(CLI::ExistingFile);
+  serve_cmd
+      ->add_option("--server-scenes-control", serve_options.server_scenes_control,
+                   "Who may pause, step, scale, reset, save and restore the --scene scenes: "
+                   "anyone in them, or none (clients still watch, touch and change bodies)")
+      ->check(CLI::IsMember({"anyone", "none"}))
+      ->capture_default_str();
   serve_cmd->add_flag("--status", serve_options.status, "Print a status line every second");
   serve_cmd
       ->add_option("--log-level", serve_options.log_level,

@@ -26,9 +26,13 @@ void control(Session& session, std::uint64_t id, Request request) {
 }  // namespace
 
 bool may_control(Session& session, std::uint64_t id) {
-  if (session.scene()->may_control(session.client_id())) return true;
+  const SceneRunner& scene = *session.scene();
+  if (scene.may_control(session.client_id())) return true;
   session.send_error(id, v1::ERROR_CODE_PERMISSION_DENIED,
-                     "only the client that loaded the scene may control it (it is not shared)");
+                     scene.access().controllable
+                         ? "only the client that loaded the scene may control it (it is not shared)"
+                         : "the server's own scenes are controlled by no client "
+                           "(--server-scenes-control none)");
   return false;
 }
 

@@ -116,8 +116,14 @@ void fill_scene_loaded(SceneId scene_id, const SceneRunner& scene, v1::SceneLoad
 }
 
 void handle_list_scenes(Session& session, std::uint64_t id) {
-  const ServerContext& context = session.context();
-  reply(session, id, [&](v1::ServerMessage& message) {
+  // read on the loader thread and counted by --max-requests-in-flight, as loads are: a listing
+  // reads the scene directory, and a client sending them by the thousand would otherwise hold
+  // a network thread and everyone on it
+  auto pending = defer_or_refuse(session, id);
+  if (!pending) return;
+  ServerContext& context = session.context();
+  boost::asio::post(context.loader, [&context, pending] {
+    v1::ServerMessage message;
     v1::SceneList& list = *message.mutable_scene_list();
     for (std::string& name : context.scene_directory.list()) list.add_files(std::move(name));
     for (const auto& [scene_id, runner] : context.scenes.list()) {
@@ -132,6 +138,7 @@ void handle_list_scenes(Session& session, std::uint64_t id) {
       running.set_sim_time(stats.sim_time);
       running.set_persistent(runner->access().persistent);
     }
+    pending->send(std::move(message));
   });
 }
 

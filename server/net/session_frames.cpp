@@ -1,5 +1,7 @@
 #include "net/session_frames.hpp"
 
+#include <utility>
+
 #include <boost/asio/post.hpp>
 
 #include "wire/message_codec.hpp"
@@ -24,6 +26,9 @@ void SessionFrames::subscribe(const FrameOptions& options) {
   drop_pending();
   if (!timer_running_) {
     timer_running_ = true;
+    due_ = std::chrono::steady_clock::now();
+    late_ticks_ = 0;
+    lost_ = 0;
     tick();
   }
 }
@@ -56,8 +61,17 @@ void SessionFrames::stop() {
 }
 
 void SessionFrames::schedule() {
-  timer_.expires_after(
-      std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / stream_.options().rate_hz)));
+  const auto period =
+      std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / stream_.options().rate_hz));
+  due_ += period;
+  const auto now = std::chrono::steady_clock::now();
+  if (due_ < now) {
+    // a starved thread: the ticks that should have come meanwhile are lost, not made up for
+    const std::int64_t late = (now - due_) / period;
+    late_ticks_ += static_cast<std::uint64_t>(late);
+    due_ += late * period;
+  }
+  timer_.expires_at(due_);
   timer_.async_wait([this, owner = owner_.lock()](const boost::system::error_code& ec) {
     if (!ec && timer_running_) tick();
   });
@@ -69,22 +83,32 @@ void SessionFrames::tick() {
     return;
   }
   if (housekeeping_) housekeeping_();
-  // a frame still with the encoder (a busy server) is the latest one: no other is planned
-  if (scene_ && !encoding_) {
+  const std::uint64_t late = std::exchange(late_ticks_, 0);
+  if (scene_) {
     auto snapshot = scene_->latest();
+    // with nothing new to show no frame is due, and none was lost while the timer was late
     if (stream_.has_new(*snapshot)) {
-      std::uint64_t skipped = 0;
-      if (outbound_.frame_waiting()) {
-        // the client has not taken the previous frame: it is dropped, and so are the triangles
-        // it carried, which the next frame must carry instead
-        skipped = slot_skipped_ + 1;
-        stream_.dropped();
-        drop_pending();
+      lost_ += late;
+      skipped_ += late;
+      if (encoding_) {
+        // a frame still with the encoder (a busy server) is the latest one: no other is
+        // planned, and this one is lost
+        ++lost_;
         ++skipped_;
+      } else {
+        std::uint64_t skipped = std::exchange(lost_, 0);
+        if (outbound_.frame_waiting()) {
+          // the client has not taken the previous frame: it is dropped, and so are the
+          // triangles it carried, which the next frame must carry instead
+          skipped += slot_skipped_ + 1;
+          stream_.dropped();
+          drop_pending();
+          ++skipped_;
+        }
+        FrameStream::Plan plan = stream_.plan(std::move(snapshot), scene_id_, skipped);
+        plan.proxies = proxies();
+        encode(std::move(plan));
       }
-      FrameStream::Plan plan = stream_.plan(std::move(snapshot), scene_id_, skipped);
-      plan.proxies = proxies();
-      encode(std::move(plan));
     }
   }
   schedule();

@@ -68,7 +68,15 @@ class SessionFrames {
   bool encoding_ = false;           ///< a frame is with the encoder: no other is planned
   /// counts the frames dropped unsent: a frame encoded under an older count is not sent
   std::uint64_t generation_ = 0;
-  std::uint64_t skipped_ = 0;  ///< frames replaced in the slot unsent, in all
+  /// frames not sent at the granted rate, in all: replaced in the slot unsent, or never built
+  /// because the encoder still had the one before or the timer came late
+  std::uint64_t skipped_ = 0;
+  /// frames the scene had for this session that were not built, to be told with the next one
+  std::uint64_t lost_ = 0;
+  /// the timer's next tick: on a fixed grid of the subscription's period from its start, so
+  /// that a late tick does not lower the rate after it
+  std::chrono::steady_clock::time_point due_{};
+  std::uint64_t late_ticks_ = 0;  ///< whole periods the timer came late by, before this tick
 };
 
 }  // namespace felt::net

@@ -2,7 +2,9 @@
 // When a scene's steps are due. While it runs, simulated time follows `scale` times the time of
 // a clock from an origin, set again whenever the scene starts, resumes, changes scale, jumps
 // (a reset, a restored state, requested steps) or falls too far behind; a paused scene takes
-// no paced steps.
+// no paced steps. Simulated time is counted from the origin's, never from 0, and turned into
+// the clock's integer ticks only once it is known to fit, so that no scale in (0, 100] and no
+// clock overflows: a scale of 1e-300 makes the next step due "far ahead", not in the past.
 
 #include "core/math/types.hpp"
 #include "runtime/clock.hpp"
@@ -15,6 +17,9 @@ class Pacer {
   /// the clock re-synchronises instead of catching up, so that a slow scene runs slower than
   /// real time rather than stepping in bursts.
   static constexpr double kMaxLagSeconds = 0.1;
+  /// The furthest ahead a step is ever said to be due: a scale too slow for any step to fall
+  /// due within it holds the scene as good as still (the physics thread wakes long before).
+  static constexpr std::chrono::seconds kFarAhead{1'000'000};
 
   Pacer(const Clock& clock, Real time_step) : clock_(clock), time_step_(time_step) {}
 
@@ -36,7 +41,7 @@ class Pacer {
   /// How far (simulated seconds) a scene at `sim_time` is behind the clock now: steps are due
   /// while it is at least one time step.
   double lag(double sim_time);
-  /// When the step after `sim_time` is due.
+  /// When the step after `sim_time` is due (at most kFarAhead after the origin).
   Clock::time_point next_due(double sim_time) const;
 
  private:
@@ -46,6 +51,7 @@ class Pacer {
   double scale_ = 1;
   bool restarting_ = true;
   Clock::time_point origin_{};
+  double sim_origin_ = 0;  ///< where the scene should be at origin_ (simulated seconds)
 };
 
 }  // namespace felt

@@ -15,9 +15,12 @@ namespace {
 // the most triangles a local model carries: a 10 cm radius holds a few hundred of a fine cloth;
 // this many (about 600 KB) is a proxy asking for far more than it can reach
 constexpr std::size_t kMaxLocalModelTriangles = 8192;
-// while a paused scene takes requested steps as fast as it can, it publishes this often
-constexpr auto kBurstPublishPeriod = std::chrono::milliseconds(16);
-// a paused scene with nothing to do still wakes this often to keep its statistics fresh
+// a pass of the physics thread takes steps for at most this long of its clock before it
+// publishes, reports and answers requests: the cadence clients see a scene at however short its
+// steps, and however many are due
+constexpr auto kPassLength = std::chrono::milliseconds(16);
+// a scene with nothing due (paused, or a tiny time scale) still wakes this often to keep its
+// statistics fresh
 constexpr auto kIdleWake = std::chrono::milliseconds(100);
 
 // Lets a thread waiting for this core run now (returns at once when none is). A network thread
@@ -80,6 +83,7 @@ bool SceneRunner::may_change(ClientId client, const BodyInfo& body) const {
 }
 
 bool SceneRunner::may_control(ClientId client) const {
+  if (!access_.controllable) return false;
   return access_.shared || access_.owner == client || !members_.contains(access_.owner);
 }
 
@@ -177,7 +181,7 @@ void SceneRunner::run(std::stop_token stop) {
         stepped = true;
         step_requests.answer_reached(live_.status());
         commands_.apply_all(scene);
-        if (clock_.now() - last_publish >= kBurstPublishPeriod) {
+        if (clock_.now() - last_publish >= kPassLength) {
           live_.publish();
           haptic_frames_.publish(SteadyClock::now());
           last_publish = clock_.now();
@@ -185,8 +189,11 @@ void SceneRunner::run(std::stop_token stop) {
       }
       pacer.restart();
     } else if (!pacer.paused()) {
+      // the steps due, for one pass at most: a scene that cannot keep up falls behind (and the
+      // Pacer re-synchronises) instead of taking a burst of steps before its clients see any
+      const Clock::time_point pass_start = clock_.now();
       double lag = pacer.lag(world.time());
-      while (lag >= h && !stop.stop_requested()) {
+      while (lag >= h && !stop.stop_requested() && clock_.now() - pass_start < kPassLength) {
         if (stepped) commands_.apply_all(scene);
         // a pause or a StepScene just applied ends the run: its reply named this step
         if (pacer.paused() || !step_requests.empty()) break;
@@ -229,7 +236,9 @@ void SceneRunner::run(std::stop_token stop) {
 
     // sleep until the next step is due, a request arrives, or stop() wakes us
     if (!step_requests.empty() || (!pacer.paused() && pacer.restarting())) continue;
-    commands_.wait(clock_, stop, pacer.paused() ? after + kIdleWake : pacer.next_due(world.time()));
+    const Clock::time_point idle_wake = after + kIdleWake;
+    commands_.wait(clock_, stop,
+                   pacer.paused() ? idle_wake : std::min(idle_wake, pacer.next_due(world.time())));
   }
   report_health(true);
 }

@@ -55,6 +55,9 @@ struct SceneAccess {
   ClientId owner = 0;       ///< the client that loaded or created it; 0: the server
   bool shared = false;      ///< anyone in it may change any body and control the scene
   bool persistent = false;  ///< stays when its last client leaves (the server's own, or kept)
+  /// clients may control it at all (not one of the server's own with --server-scenes-control
+  /// none)
+  bool controllable = true;
 };
 
 class SceneRunner {
@@ -87,7 +90,7 @@ class SceneRunner {
   /// the owner has left the scene.
   bool may_change(ClientId client, const BodyInfo& body) const;
   /// Whether `client` may pause, step, reset or destroy the scene: by the same rule, with the
-  /// client that loaded the scene as its owner.
+  /// client that loaded the scene as its owner, and never when the scene is not controllable.
   bool may_control(ClientId client) const;
 
   /// Queues a change, applied before the next step; `cancel` runs instead if the scene stops

@@ -100,8 +100,7 @@ void read_haptics(const ObjectReader& haptics, Scene& scene) {
     const ObjectReader path(
         device.at("path"), device.path_of("path"),
         {"shape", "from", "to", "center", "axis", "radius", "period", "buttons", "samples"});
-    scene.devices.push_back(
-        {device.string("name", "device " + std::to_string(i)), read_path(path)});
+    scene.devices.push_back({device.name("name", "device " + std::to_string(i)), read_path(path)});
   }
 }
 

@@ -38,6 +38,8 @@ class ObjectReader {
       : value_(value), path_(std::move(path)) {
     if (!value_.is_object()) fail(path_, "must be an object");
     for (const auto& [key, unused] : value_.items()) {
+      // a key is named in the message, which goes to a client: not one of any length
+      if (key.size() > kMaxNameBytes) fail(path_, "has an unknown key of over 100 bytes");
       if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
         fail(child(path_, key), "unknown key");
       }
@@ -93,11 +95,17 @@ class ObjectReader {
     return at(key).get<bool>();
   }
 
+  /// A string of at most kMaxStringBytes: a file, a type, a model.
   std::string string(std::string_view key, std::string fallback) const {
-    if (!has(key)) return fallback;
-    if (!at(key).is_string()) fail(path_of(key), "must be a string");
-    return at(key).get<std::string>();
+    return bounded_string(key, std::move(fallback), kMaxStringBytes);
   }
+  /// A name of at most kMaxNameBytes: the scene's, a body's, a device's, which every client's
+  /// ListScenes, SceneLoaded and events repeat.
+  std::string name(std::string_view key, std::string fallback) const {
+    return bounded_string(key, std::move(fallback), kMaxNameBytes);
+  }
+  static constexpr std::size_t kMaxNameBytes = 100;
+  static constexpr std::size_t kMaxStringBytes = 1024;
 
   /// Three numbers within ±kMaxVectorComponent (core/math/bounds.hpp): a point, a size, a
   /// direction, a scale.
@@ -132,6 +140,17 @@ class ObjectReader {
   static constexpr Real kMaxLength = 1e6;
 
  private:
+  std::string bounded_string(std::string_view key, std::string fallback,
+                             std::size_t max_bytes) const {
+    if (!has(key)) return fallback;
+    if (!at(key).is_string()) fail(path_of(key), "must be a string");
+    const auto& text = at(key).get_ref<const std::string&>();
+    if (text.size() > max_bytes) {
+      fail(path_of(key), "must be at most " + std::to_string(max_bytes) + " bytes");
+    }
+    return text;
+  }
+
   const json& value_;
   std::string path_;
 };

@@ -263,7 +263,7 @@ ClothBody read_cloth(const ObjectReader& body, std::size_t index, const SceneLoa
     fail(body.path_of("integrator"),
          "unknown integrator \"" + integrator_name + "\" (known: " + known + ")");
   }
-  ClothBody cloth(body.string("name", "cloth" + std::to_string(index)), model, read_springs(body),
+  ClothBody cloth(body.name("name", "cloth" + std::to_string(index)), model, read_springs(body),
                   std::move(integrator));
   for (std::uint32_t p : read_pins(body, grid ? &*grid : nullptr, model->particle_count())) {
     cloth.pin(p);
@@ -344,6 +344,8 @@ Scene read_scene(const json& document, const SceneLoadOptions& options) {
   WorldSettings settings;
   settings.time_step = root.positive("time_step", settings.time_step);
   if (settings.time_step > 0.1) fail(root.path_of("time_step"), "must be at most 0.1 s");
+  // no shorter: at 1e-9 s, a millisecond of the scene was a million steps before any frame
+  if (settings.time_step < 1e-6) fail(root.path_of("time_step"), "must be at least 1e-6 s");
   settings.gravity = root.vec3("gravity", settings.gravity);
   settings.max_speed = root.positive("max_speed", settings.max_speed);
   SolidStepSettings solid_settings;
@@ -353,7 +355,7 @@ Scene read_scene(const json& document, const SceneLoadOptions& options) {
                      {"max_step", "contact_iterations", "min_depth", "max_speed", "friction"}));
   }
 
-  Scene scene(root.string("name", "unnamed"), World(settings, solid_settings));
+  Scene scene(root.name("name", "unnamed"), World(settings, solid_settings));
   if (root.has("haptics")) {
     read_haptics(ObjectReader(root.at("haptics"), root.path_of("haptics"),
                               {"proxy_radius", "stiffness", "damping", "max_force",

@@ -189,7 +189,7 @@ SolidBody read_solid(const ObjectReader& body, std::size_t index,
       "crease_angle", shape.voxelized ? 180 : kDefaultCreaseAngle * 180 / std::numbers::pi);
   if (!(crease >= 0 && crease <= 180)) fail(body.path_of("crease_angle"), "must be 0 to 180");
   material.crease_angle = crease * std::numbers::pi / 180;
-  SolidBody solid(body.string("name", "solid" + std::to_string(index)), std::move(shape.lattice),
+  SolidBody solid(body.name("name", "solid" + std::to_string(index)), std::move(shape.lattice),
                   material);
   if (shape.surface) {
     solid.set_embedded_surface(std::make_shared<const EmbeddedSurface>(std::move(*shape.surface)));

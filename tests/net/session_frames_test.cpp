@@ -75,5 +75,26 @@ TEST(SessionFrames, ANewSubscriptionsFirstFrameIsItsOwnKeyFrame) {
   EXPECT_GT(frame->bodies(0).triangles_size(), 0);
 }
 
+// Issue 31, found 7: under CPU starvation frames thinned out to half their granted rate with
+// `skipped` 0. A frame the scene had but the encoder could not take counts as skipped.
+TEST(SessionFrames, FramesNotBuiltAtTheGrantedRateAreCountedAsSkipped) {
+  InProcessServer server(flat_cloth_scene(Vec3(0, -9.81, 0)));  // it sags: always something new
+  auto client = server.greeted("watcher");
+  {
+    EncoderHeld held(server.context());
+    client->subscribe_frames(100);       // its first frame is planned at once, and waits
+    std::this_thread::sleep_for(300ms);  // about 30 ticks that find the encoder busy
+  }
+  const auto first = client->next_frame(2s);
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first->skipped(), 0u);  // planned before the ticks that were lost
+  const auto second = client->next_frame(2s);
+  ASSERT_TRUE(second);
+  EXPECT_GE(second->skipped(), 10u);
+  EXPECT_LE(second->skipped(), 60u);  // no more ticks than 100 Hz gives in the time
+  const v1::Stats stats = client->stats();
+  EXPECT_GE(stats.session().frames_skipped(), second->skipped());
+}
+
 }  // namespace
 }  // namespace felt::net

@@ -332,6 +332,35 @@ TEST_F(SmallBacklog, ClientsBodiesAndRequestsInFlightAreLimited) {
   EXPECT_EQ(errors, 1);
 }
 
+// Issue 31, found 7: 200,000 pipelined ListScenes kept feltd busy for 70 s, counted by no limit.
+TEST_F(SmallBacklog, ListingsAreCountedAsRequestsInFlight) {
+  auto client = greeted("lister");
+  std::vector<std::uint64_t> ids;
+  for (int i = 0; i < 50; ++i) {
+    v1::ClientMessage list;
+    list.mutable_list_scenes();
+    ids.push_back(client->send(list));
+  }
+  int refused = 0, listed = 0;
+  while (refused + listed < 50) {
+    const auto reply = client->receive(30s);
+    ASSERT_TRUE(reply);
+    if (reply->has_error()) {
+      EXPECT_EQ(reply->error().code(), v1::ERROR_CODE_LIMIT_EXCEEDED);
+      EXPECT_EQ(reply->error().message(),
+                "at most 2 requests in flight per client (--max-requests-in-flight)");
+      ++refused;
+    } else if (reply->has_scene_list()) {
+      EXPECT_EQ(reply->scene_list().running_size(), 1);
+      ++listed;
+    }
+  }
+  // read together, the 50 cannot all have been answered before the third came
+  EXPECT_GT(refused, 0);
+  EXPECT_GE(listed, 2);
+  EXPECT_EQ(client->list_scenes().running_size(), 1);  // and the next one, alone, is served
+}
+
 TEST_F(FeltdTest, UnknownIdsAndNonFiniteNumbersGetErrorsAndNothingChanges) {
   auto client = greeted("sloppy");
   expect_error([&] { client->join_scene(12345); }, v1::ERROR_CODE_UNKNOWN_ID);

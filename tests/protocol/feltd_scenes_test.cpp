@@ -317,6 +317,31 @@ TEST_F(FeltdKeptScenesTest, OneClientKeepsAtMostTheLimitAndOthersStillLoad) {
   EXPECT_NE(client->request(load).scene_loaded().scene_id(), 0u);
 }
 
+class ServerScenesControlledByNone : public FeltdTest {
+  std::vector<std::string> extra_args() const override {
+    return {"--server-scenes-control", "none"};
+  }
+};
+
+// Issue 31, found 5: anyone could control the server's own scenes (and a scale of 1e-300 made
+// their physics thread spin); the operator now says whether clients may.
+TEST_F(ServerScenesControlledByNone, ClientsWatchTouchAndChangeBodiesButDoNotControl) {
+  auto client = greeted("visitor");
+  const std::string says = "the server's own scenes are controlled by no client";
+  expect_error([&] { client->pause(); }, v1::ERROR_CODE_PERMISSION_DENIED, says);
+  expect_error([&] { client->set_time_scale(1e-300); }, v1::ERROR_CODE_PERMISSION_DENIED, says);
+  expect_error([&] { client->reset(); }, v1::ERROR_CODE_PERMISSION_DENIED, says);
+  expect_error([&] { client->save_state(); }, v1::ERROR_CODE_PERMISSION_DENIED, says);
+  EXPECT_FALSE(client->stats().scene().paused());
+  client->subscribe_frames(60);
+  EXPECT_TRUE(client->next_frame(5s));
+  // a scene a client creates is its own to control
+  v1::CreateScene create;
+  create.set_name("mine");
+  client->create_scene(create);
+  EXPECT_TRUE(client->pause().paused());
+}
+
 TEST_F(FeltdTest, LeavingASceneEndsItsFramesAndProxies) {
   auto client = greeted("leaver");
   const std::uint64_t scene = client->stats().scene().scene_id();

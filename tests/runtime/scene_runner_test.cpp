@@ -51,6 +51,44 @@ TEST(SceneRunner, ReportsTheRealTimeFactorOverHalfASecondOfItsClock) {
   EXPECT_EQ(stats.ms_per_step, 0);
 }
 
+// Issue 31, found 4: a scene whose steps cannot keep up with its clock (a step of 1e-9 s then)
+// took every step due before it published: one frame in 3 s, and GetStats said 0 steps. On a
+// clock that moves 100 us at every reading, each step takes 200 us for 1 us of the scene.
+TEST(SceneRunner, ASceneThatCannotKeepUpStillPublishesEveryPassOfItsClock) {
+  TickingClock clock(100us);
+  SceneRunner runner(flat_cloth_scene(Vec3(0, -9.81, 0), 1e-6), {}, {}, {}, clock);
+  runner.start();
+  ASSERT_TRUE(wait_for([&] { return runner.latest()->step >= 5000; }, 20s));
+  const auto snapshot = runner.latest();
+  const RunnerStats stats = runner.stats();
+  runner.stop();
+  // a pass ends after 16 ms of the clock: at most 16 ms / 200 us = 80 steps between snapshots
+  EXPECT_LE(snapshot->step, 81 * snapshot->version);
+  EXPECT_GE(stats.steps + 81, snapshot->step);  // the statistics are as fresh as the snapshots
+  EXPECT_NEAR(stats.ms_per_step, 0.1, 1e-9);    // a step's two readings are one tick apart
+  EXPECT_GT(stats.real_time_factor, 0);
+  EXPECT_LT(stats.real_time_factor, 0.01);
+}
+
+// Issue 31, found 5: a time scale of 1e-300 overflowed the pacing arithmetic and the physics
+// thread spun at 100 % of a core while the scene stood still.
+TEST(SceneRunner, ATinyTimeScaleHoldsTheSceneStillAndItsThreadAsleep) {
+  ManualClock clock;
+  SceneRunner runner(flat_cloth_scene(Vec3(0, -9.81, 0)), {}, {}, {}, clock);
+  runner.start();
+  ASSERT_TRUE(settled(clock));
+  clock.advance(500us);
+  ASSERT_TRUE(move_clock(clock, 10ms));
+  Awaited<SceneStatus> scaled;
+  runner.set_time_scale(0, 1e-300, scaled.completion());
+  ASSERT_TRUE(scaled.get());
+  const std::uint64_t steps = runner.latest()->step;
+  ASSERT_TRUE(move_clock(clock, 1s));  // only possible while the thread sleeps between looks
+  EXPECT_EQ(runner.latest()->step, steps);
+  EXPECT_EQ(runner.stats().time_scale, 1e-300);
+  runner.stop();
+}
+
 TEST(SceneRunner, AppliesPostedCommandsBetweenSteps) {
   SceneRunner runner(flat_cloth_scene());
   runner.start();

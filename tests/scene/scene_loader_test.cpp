@@ -91,6 +91,39 @@ TEST(SceneLoader, NamesThePathOfTheBadValue) {
   EXPECT_EQ(error_of(doc), "bodies[0].type: must be \"cloth\" or \"solid\"");
 }
 
+// Issue 31, found 7: a 1 MB scene name went into every client's ListScenes.
+TEST(SceneLoader, NamesAndStringsHaveALengthLimit) {
+  json doc = minimal_cloth();
+  doc["name"] = std::string(100, 'n');
+  EXPECT_EQ(error_of(doc), "(loaded)");
+  doc["name"] = std::string(101, 'n');
+  EXPECT_EQ(error_of(doc), "name: must be at most 100 bytes");
+  doc["name"] = std::string(1 << 20, 'n');
+  EXPECT_EQ(error_of(doc), "name: must be at most 100 bytes");
+
+  doc = minimal_cloth();
+  doc["bodies"][0]["name"] = std::string(101, 'b');
+  EXPECT_EQ(error_of(doc), "bodies[0].name: must be at most 100 bytes");
+
+  doc = minimal_cloth();
+  doc["bodies"][0]["integrator"] = std::string(1025, 'i');
+  EXPECT_EQ(error_of(doc), "bodies[0].integrator: must be at most 1024 bytes");
+
+  // an unknown key is named in the message, unless it is too long to repeat
+  doc = minimal_cloth();
+  doc["bodies"][0][std::string(101, 'k')] = 1;
+  EXPECT_EQ(error_of(doc), "bodies[0]: has an unknown key of over 100 bytes");
+}
+
+// Issue 31, found 4: a step of 1e-9 s froze a scene's clients for seconds before its first frame.
+TEST(SceneLoader, TheTimeStepIsAtLeastAMicrosecond) {
+  json doc = minimal_cloth();
+  doc["time_step"] = 1e-6;
+  EXPECT_EQ(error_of(doc), "(loaded)");
+  doc["time_step"] = 1e-9;
+  EXPECT_EQ(error_of(doc), "time_step: must be at least 1e-6 s");
+}
+
 TEST(SceneLoader, UnknownIntegratorListsTheKnownOnes) {
   json doc = minimal_cloth();
   doc["bodies"][0]["integrator"] = "magic";
