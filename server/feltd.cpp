@@ -8,6 +8,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <span>
 #include <thread>
 
 #include <CLI/CLI.hpp>
@@ -241,14 +242,12 @@ int serve(const ServeOptions& options) {
   return 0;
 }
 
-nlohmann::json stage_times_to_json(const felt::SolidStageTimes& times) {
-  return {{"integration", times.integration},
-          {"detection", times.detection},
-          {"triangles", times.triangles},
-          {"penetration", times.penetration},
-          {"resolution", times.resolution},
-          {"colliders", times.colliders},
-          {"finish", times.finish}};
+/// `profile`'s stages of `stages`, in milliseconds, by name.
+nlohmann::json stage_ms_to_json(const felt::StepProfile& profile,
+                                std::span<const felt::StepStage> stages) {
+  nlohmann::json json = nlohmann::json::object();
+  for (felt::StepStage stage : stages) json[felt::stage_name(stage)] = 1e3 * profile[stage];
+  return json;
 }
 
 nlohmann::json stats_to_json(const felt::BatchRunStats& stats) {
@@ -297,8 +296,12 @@ nlohmann::json stats_to_json(const felt::BatchRunStats& stats) {
             {"mean_colliding_triangles", solids.mean_colliding_triangles},
             {"max_colliding_triangles", solids.max_colliding_triangles},
             {"max_substeps", solids.max_substeps},
-            {"mean_stage_ms", stage_times_to_json(solids.mean_ms)},
-            {"max_stage_ms", stage_times_to_json(solids.max_ms)}}},
+            {"mean_stage_ms", stage_ms_to_json(solids.mean, felt::SolidSystem::kStages)},
+            {"max_stage_ms", stage_ms_to_json(solids.max, felt::SolidSystem::kStages)}}},
+          {"cloth",
+           {{"max_substeps", stats.cloth.max_substeps},
+            {"mean_stage_ms", stage_ms_to_json(stats.cloth.mean, felt::ClothSystem::kStages)},
+            {"max_stage_ms", stage_ms_to_json(stats.cloth.max, felt::ClothSystem::kStages)}}},
           {"haptics",
            {{"ticks", haptics.ticks},
             {"contact_ticks", haptics.contact_ticks},

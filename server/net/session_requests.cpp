@@ -1,5 +1,9 @@
 // Hello and GetStats.
 
+#include <algorithm>
+#include <span>
+#include <string_view>
+
 #include "net/requests.hpp"
 
 namespace felt::net {
@@ -78,6 +82,18 @@ void handle_hello(Session& session, std::uint64_t id, const v1::Hello& hello) {
   });
 }
 
+/// The stages of one system, unless it spent no time at all (it has no bodies).
+void add_stage_times(std::string_view system, std::span<const StepStage> stages,
+                     const StepProfile& profile, v1::SceneStats& out) {
+  if (std::ranges::none_of(stages, [&](StepStage s) { return profile[s] > 0; })) return;
+  for (StepStage stage : stages) {
+    v1::StageTime& entry = *out.add_stages();
+    entry.set_system(std::string(system));
+    entry.set_stage(std::string(stage_name(stage)));
+    entry.set_ms_per_step(1e3 * profile[stage]);
+  }
+}
+
 void handle_get_stats(Session& session, std::uint64_t id) {
   const ServerContext& context = session.context();
   reply(session, id, [&](v1::ServerMessage& message) {
@@ -110,6 +126,8 @@ void handle_get_stats(Session& session, std::uint64_t id) {
         entry.set_volume_ratio(body.volume_ratio);
         entry.set_kinetic_energy(body.kinetic_energy);
       }
+      add_stage_times("cloth", ClothSystem::kStages, runner.cloth_profile, out);
+      add_stage_times("solids", SolidSystem::kStages, runner.solid_profile, out);
     }
     v1::SessionStats& own = *stats.mutable_session();
     const Session::Counters counters = session.counters();

@@ -18,16 +18,13 @@ bool all_finite(std::span<const Vec3> values) {
   return std::ranges::all_of(values, [](const Vec3& v) { return v.allFinite(); });
 }
 
-/// Applies `op(total, step)` to each stage of two stage-time records.
-template <typename Op>
-void each_stage(SolidStageTimes& total, const SolidStageTimes& step, Op op) {
-  op(total.integration, step.integration);
-  op(total.detection, step.detection);
-  op(total.triangles, step.triangles);
-  op(total.penetration, step.penetration);
-  op(total.resolution, step.resolution);
-  op(total.colliders, step.colliders);
-  op(total.finish, step.finish);
+/// Adds one step's profile to a run's: the sums (divided by the steps at the end) and maxima.
+void record_stages(const StepProfile& step, int substeps, StageRunStats& run) {
+  run.max_substeps = std::max(run.max_substeps, substeps);
+  for (std::size_t s = 0; s < kStepStageCount; ++s) {
+    run.mean.seconds[s] += step.seconds[s];
+    run.max.seconds[s] = std::max(run.max.seconds[s], step.seconds[s]);
+  }
 }
 
 void record_solid_step(const SolidStepStats& step, SolidRunStats& run) {
@@ -35,9 +32,7 @@ void record_solid_step(const SolidStepStats& step, SolidRunStats& run) {
   run.mean_colliding_triangles += static_cast<double>(step.colliding_triangles);
   run.max_colliding_nodes = std::max(run.max_colliding_nodes, step.colliding_nodes);
   run.max_colliding_triangles = std::max(run.max_colliding_triangles, step.colliding_triangles);
-  run.max_substeps = std::max(run.max_substeps, step.substeps);
-  each_stage(run.mean_ms, step.times, [](Real& total, Real s) { total += 1e3 * s; });
-  each_stage(run.max_ms, step.times, [](Real& worst, Real s) { worst = std::max(worst, 1e3 * s); });
+  record_stages(step.profile, step.substeps, run);
 }
 
 BodyRunStats cloth_stats(const ClothBody& body) {
@@ -178,6 +173,9 @@ BatchRunStats run_batch(Scene& scene, std::uint64_t steps, const BatchHaptics& h
     if (servo) servo->after_step(world, stats.haptics);
     if (report.flags & kStepRescued) ++stats.rescued_steps;
     if (report.flags & kStepUnrecoverable) ++stats.unrecoverable_steps;
+    if (!world.cloth_system().bodies().empty()) {
+      record_stages(report.cloth_profile, world.cloth_system().last_stats().substeps, stats.cloth);
+    }
     if (!world.solids().bodies().empty()) {
       record_solid_step(world.solids().last_stats(), stats.solids);
     }
@@ -192,7 +190,9 @@ BatchRunStats run_batch(Scene& scene, std::uint64_t steps, const BatchHaptics& h
     const double n = static_cast<double>(steps);
     stats.solids.mean_colliding_nodes /= n;
     stats.solids.mean_colliding_triangles /= n;
-    each_stage(stats.solids.mean_ms, stats.solids.mean_ms, [n](Real& total, Real) { total /= n; });
+    for (StepProfile* mean : {&stats.cloth.mean, &stats.solids.mean}) {
+      for (Real& seconds : mean->seconds) seconds /= n;
+    }
   }
   stats.nonfinite = stats.unrecoverable_steps > 0;
   for (BodyId id : world.body_ids()) {

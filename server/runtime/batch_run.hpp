@@ -25,15 +25,19 @@ struct BodyRunStats {
   double volume_ratio = 1;  ///< solid: volume over rest volume
 };
 
+/// Where a system's steps spent their time over a run, stage by stage.
+struct StageRunStats {
+  int max_substeps = 0;
+  StepProfile mean;  ///< per step
+  StepProfile max;   ///< the slowest step of each stage
+};
+
 /// The soft-solid pipeline over a run, as the second thesis's Tables 7.3 and 7.4 report it.
-struct SolidRunStats {
+struct SolidRunStats : StageRunStats {
   double mean_colliding_nodes = 0;
   std::size_t max_colliding_nodes = 0;
   double mean_colliding_triangles = 0;
   std::size_t max_colliding_triangles = 0;
-  int max_substeps = 0;
-  SolidStageTimes mean_ms;  ///< per step, milliseconds
-  SolidStageTimes max_ms;   ///< the slowest step of each stage
 };
 
 /// The scripted haptic devices over a run: timings like thesis 1 Table 9.4, the force's
@@ -70,6 +74,7 @@ struct BatchRunStats {
   std::uint64_t rescued_steps = 0;
   std::uint64_t unrecoverable_steps = 0;
   std::vector<BodyRunStats> bodies;
+  StageRunStats cloth;
   SolidRunStats solids;
   HapticRunStats haptics;
 };

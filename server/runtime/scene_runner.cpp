@@ -143,11 +143,13 @@ RunnerStats SceneRunner::stats() const {
   return stats;
 }
 
-void SceneRunner::step_once() {
+StepReport SceneRunner::step_once() {
   World& world = live_.scene.world;
   live_.timed_forces.apply(world);
   reactions_.apply_and_clear(world);
-  health_.count(world.step(yield_core));
+  StepReport report = world.step(yield_core);
+  health_.count(report);
+  return report;
 }
 
 void SceneRunner::report_health(bool at_once) {
@@ -164,8 +166,8 @@ void SceneRunner::run(std::stop_token stop) {
 
   const auto timed_step = [&] {
     const Clock::time_point start = clock_.now();
-    step_once();
-    window.add_step(clock_.now() - start);
+    const StepReport report = step_once();
+    window.add_step(clock_.now() - start, report.cloth_profile, report.solid_profile);
   };
 
   while (!stop.stop_requested()) {
@@ -230,6 +232,8 @@ void SceneRunner::run(std::stop_token stop) {
       if (const auto rates = window.close_if_full(after, world.time())) {
         stats_.real_time_factor = rates->real_time_factor;
         stats_.ms_per_step = rates->ms_per_step;
+        stats_.cloth_profile = rates->cloth_profile;
+        stats_.solid_profile = rates->solid_profile;
         stats_.bodies = std::move(bodies);
       }
     }

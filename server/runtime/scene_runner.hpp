@@ -41,6 +41,8 @@ struct RunnerStats {
   double sim_time = 0;
   double real_time_factor = 0;  ///< simulated seconds per wall second, over StatsWindow::kLength
   double ms_per_step = 0;       ///< wall time of one step, averaged over StatsWindow::kLength
+  /// where a step spent its time, stage by stage, averaged over the same window
+  StepProfile cloth_profile, solid_profile;
   std::uint64_t haptic_updates = 0;  ///< proxy solves since the scene started
   std::uint64_t rescued_steps = 0;
   std::uint64_t unrecoverable_steps = 0;
@@ -183,7 +185,7 @@ class SceneRunner {
  private:
   void run(std::stop_token stop);
   /// One step: queued forces and reactions, the world's step, the health bookkeeping.
-  void step_once();
+  StepReport step_once();
   /// Reports rescued and unrecoverable steps not yet reported (HealthEvents::report).
   void report_health(bool at_once);
 

@@ -65,7 +65,7 @@ void scene_step(benchmark::State& state, std::string_view name) {
   constexpr int kStepsFromContact = 50;
   SceneAtContact& at = scene_at_contact(name);
   World& world = at.scene.world;
-  SolidStageTimes total;
+  StepProfile total;
   double substeps = 0, colliding_nodes = 0;
   int since_contact = 0;
   for (auto _ : state) {
@@ -77,8 +77,8 @@ void scene_step(benchmark::State& state, std::string_view name) {
     }
     world.step();
     const SolidStepStats& stats = world.solids().last_stats();
-    for (const bench::StageColumn& stage : bench::kStages) {
-      total.*stage.seconds += stats.times.*stage.seconds;
+    for (StepStage stage : bench::kStages) {
+      total[stage] += stats.profile[stage];
     }
     substeps += stats.substeps;
     colliding_nodes += static_cast<double>(stats.colliding_nodes);
@@ -86,8 +86,8 @@ void scene_step(benchmark::State& state, std::string_view name) {
   const auto per_step = [](double sum) {
     return benchmark::Counter(sum, benchmark::Counter::kAvgIterations);
   };
-  for (const bench::StageColumn& stage : bench::kStages) {
-    state.counters[std::string(stage.name) + "_ms"] = per_step(1e3 * total.*stage.seconds);
+  for (StepStage stage : bench::kStages) {
+    state.counters[std::string(stage_name(stage)) + "_ms"] = per_step(1e3 * total[stage]);
   }
   state.counters["substeps"] = per_step(substeps);
   state.counters["colliding_nodes"] = per_step(colliding_nodes);

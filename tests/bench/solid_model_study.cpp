@@ -345,7 +345,7 @@ Run simulate(const Problem& problem, const SolidMaterial& material, Real h,
     const SolidStepStats& stats = system.step(h, kGravity, problem.colliders);
     run.cpu_seconds += cpu_seconds() - cpu;
     run.wall_seconds += study::seconds_since(wall);
-    run.model_seconds += stats.times.integration;
+    run.model_seconds += stats.profile[StepStage::kIntegration];
     run.substeps = std::max(run.substeps, stats.substeps);
     run.rescued_steps += stats.rescued ? 1 : 0;
     if (stats.unrecoverable) {

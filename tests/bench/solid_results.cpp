@@ -28,7 +28,7 @@ struct Run {
   /// process CPU time, which the time other work on the machine takes does not add to
   double mean_cpu_ms = 0, max_cpu_ms = 0;
   double fastest_run_ms = 0, slowest_run_ms = 0;  ///< the range of mean_ms over the runs
-  SolidStageTimes stage_mean_ms, stage_max_ms;
+  StepProfile stage_mean_ms, stage_max_ms;
   double mean_substeps = 0;
   int max_substeps = 0;
   double mean_nodes = 0, mean_triangles = 0;  ///< colliding (Table 7.3 PKU, PKT)
@@ -58,10 +58,10 @@ Run measure(std::string_view name, std::uint64_t steps) {
     run.mean_cpu_ms += cpu_ms;
     run.max_cpu_ms = std::max(run.max_cpu_ms, cpu_ms);
     run.max_ms = std::max(run.max_ms, ms);
-    for (const bench::StageColumn& stage : bench::kStages) {
-      const double stage_ms = 1e3 * stats.times.*stage.seconds;
-      run.stage_mean_ms.*stage.seconds += stage_ms;
-      run.stage_max_ms.*stage.seconds = std::max(run.stage_max_ms.*stage.seconds, stage_ms);
+    for (StepStage stage : bench::kStages) {
+      const double stage_ms = 1e3 * stats.profile[stage];
+      run.stage_mean_ms[stage] += stage_ms;
+      run.stage_max_ms[stage] = std::max(run.stage_max_ms[stage], stage_ms);
     }
     run.mean_substeps += stats.substeps;
     run.max_substeps = std::max(run.max_substeps, stats.substeps);
@@ -74,7 +74,7 @@ Run measure(std::string_view name, std::uint64_t steps) {
   const auto n = static_cast<double>(run.steps);
   run.mean_ms /= n;
   run.mean_cpu_ms /= n;
-  for (const bench::StageColumn& stage : bench::kStages) run.stage_mean_ms.*stage.seconds /= n;
+  for (StepStage stage : bench::kStages) run.stage_mean_ms[stage] /= n;
   run.mean_substeps /= n;
   run.mean_nodes /= n;
   run.mean_triangles /= n;
@@ -108,11 +108,9 @@ Run combine_runs(std::vector<Run> runs) {
   combined.mean_cpu_ms = average([](const Run& r) { return r.mean_cpu_ms; });
   combined.max_ms = median([](const Run& r) { return r.max_ms; });
   combined.max_cpu_ms = median([](const Run& r) { return r.max_cpu_ms; });
-  for (const bench::StageColumn& stage : bench::kStages) {
-    combined.stage_mean_ms.*stage.seconds =
-        average([&](const Run& r) { return r.stage_mean_ms.*stage.seconds; });
-    combined.stage_max_ms.*stage.seconds =
-        median([&](const Run& r) { return r.stage_max_ms.*stage.seconds; });
+  for (StepStage stage : bench::kStages) {
+    combined.stage_mean_ms[stage] = average([&](const Run& r) { return r.stage_mean_ms[stage]; });
+    combined.stage_max_ms[stage] = median([&](const Run& r) { return r.stage_max_ms[stage]; });
   }
   return combined;
 }
@@ -264,15 +262,15 @@ void write_table(std::ostream& out, const std::vector<SceneResult>& results, int
          "thesis's row is its worst case at first contact, in multiples of its 15.6 ms "
          "timer.\n\n"
       << "| scene |";
-  for (const bench::StageColumn& stage : bench::kStages) out << " " << stage.name << " |";
+  for (StepStage stage : bench::kStages) out << " " << stage_name(stage) << " |";
   out << "\n|---|";
   for (std::size_t s = 0; s < bench::kStages.size(); ++s) out << "---:|";
   out << "\n";
   for (const SceneResult& r : results) {
     out << "| " << r.name << " |";
-    for (const bench::StageColumn& stage : bench::kStages) {
-      out << " " << fixed(r.run.stage_mean_ms.*stage.seconds, 3) << " ("
-          << fixed(r.run.stage_max_ms.*stage.seconds, 2) << ") |";
+    for (StepStage stage : bench::kStages) {
+      out << " " << fixed(r.run.stage_mean_ms[stage], 3) << " ("
+          << fixed(r.run.stage_max_ms[stage], 2) << ") |";
     }
     out << "\n";
     if (const ThesisRow* t = thesis_row(r.name)) {
@@ -292,9 +290,9 @@ void write_summary(std::ostream& out, const std::vector<SceneResult>& results) {
     const ThesisRow* t = thesis_row(r.name);
     if (t == nullptr) continue;
     const Run& run = r.run;
-    const bench::StageColumn* largest = &bench::kStages[0];
-    for (const bench::StageColumn& stage : bench::kStages) {
-      if (run.stage_mean_ms.*stage.seconds > run.stage_mean_ms.*largest->seconds) largest = &stage;
+    StepStage largest = bench::kStages[0];
+    for (StepStage stage : bench::kStages) {
+      if (run.stage_mean_ms[stage] > run.stage_mean_ms[largest]) largest = stage;
     }
     const double thesis_ms = thesis_step_ms(t->fps_mean);
     out << "- **" << r.name << "**: " << fixed(run.mean_ms, 3) << " ms per step ("
@@ -306,8 +304,8 @@ void write_summary(std::ostream& out, const std::vector<SceneResult>& results) {
         << " frames/s, two steps a frame) on a 1.8 GHz Pentium 4: this is "
         << fixed(thesis_ms / run.mean_ms, 0) << "× faster ("
         << fixed(2 * thesis_ms / run.mean_ms, 0)
-        << "× if a frame was one step, ≈30 steps/s). The largest stage is " << largest->name << ", "
-        << fixed(100 * run.stage_mean_ms.*largest->seconds / run.mean_ms, 0) << " % of the step.\n";
+        << "× if a frame was one step, ≈30 steps/s). The largest stage is " << stage_name(largest)
+        << ", " << fixed(100 * run.stage_mean_ms[largest] / run.mean_ms, 0) << " % of the step.\n";
   }
   out << "\nWhat keeps the step short: each body's stable step comes from the largest eigenvalue "
          "of its stiffness and damping matrices at rest (Lanczos, once per material) with a "

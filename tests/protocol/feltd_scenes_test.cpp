@@ -386,5 +386,28 @@ TEST_F(FeltdTest, RescuedStepsAreToldAsSuch) {
   EXPECT_GT(rescued->count(), 0u);
 }
 
+TEST_F(FeltdTest, StatsSayWhereTheStepsSpendTheirTime) {
+  // the default scene's curtain: the cloth stages, and none of the solids' (it has none)
+  auto client = greeted("profiler");
+  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  v1::SceneStats stats = client->stats().scene();
+  while (stats.stages().empty() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(50ms);
+    stats = client->stats().scene();
+  }
+  std::vector<std::string> stages;
+  for (const v1::StageTime& stage : stats.stages()) {
+    EXPECT_EQ(stage.system(), "cloth");
+    EXPECT_GE(stage.ms_per_step(), 0);
+    EXPECT_LT(stage.ms_per_step(), stats.ms_per_step()) << stage.stage();
+    if (stage.stage() == "integration") {
+      EXPECT_GT(stage.ms_per_step(), 0);
+    }
+    stages.push_back(stage.stage());
+  }
+  EXPECT_EQ(stages, (std::vector<std::string>{"integration", "stretch_limit", "colliders",
+                                              "self_collision", "constraints", "health"}));
+}
+
 }  // namespace
 }  // namespace felt::test

@@ -25,5 +25,27 @@ TEST(StatsWindow, ReportsTheRatesOfAFullWindowAndThenStartsAnother) {
   EXPECT_EQ(paused->ms_per_step, 0);
 }
 
+TEST(StatsWindow, AveragesTheStagesPerStep) {
+  const Clock::time_point start{};
+  StatsWindow window(start, 0.0);
+  StepProfile cloth, solid;
+  cloth[StepStage::kIntegration] = 3e-4;
+  solid[StepStage::kDetection] = 1e-4;
+  window.add_step(1ms, cloth, solid);
+  cloth[StepStage::kIntegration] = 1e-4;
+  cloth[StepStage::kStretchLimit] = 2e-4;
+  window.add_step(1ms, cloth, StepProfile{});
+  const auto rates = window.close_if_full(start + 500ms, 0.002);
+  ASSERT_TRUE(rates);
+  EXPECT_DOUBLE_EQ(rates->cloth_profile[StepStage::kIntegration], 2e-4);
+  EXPECT_DOUBLE_EQ(rates->cloth_profile[StepStage::kStretchLimit], 1e-4);
+  EXPECT_DOUBLE_EQ(rates->solid_profile[StepStage::kDetection], 0.5e-4);
+  EXPECT_EQ(rates->solid_profile[StepStage::kHealth], 0);
+  // the next window starts from nothing
+  const auto next = window.close_if_full(start + 1000ms, 0.002);
+  ASSERT_TRUE(next);
+  EXPECT_EQ(next->cloth_profile[StepStage::kIntegration], 0);
+}
+
 }  // namespace
 }  // namespace felt

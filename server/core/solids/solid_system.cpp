@@ -1,30 +1,20 @@
 #include "core/solids/solid_system.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "core/math/check.hpp"
 #include "core/solids/solid_collider_contact.hpp"
+#include "core/step/substep_rescue.hpp"
 
 namespace felt {
 namespace {
 
-constexpr int kMaxSubstepDoublings = 6;
-// A failing step's retries take at most this many substeps in all, or kRescueFactor times the
-// substeps of the first attempt when that is more: a step that cannot be rescued then costs a
-// few normal steps, not seconds. A body that needed 445 substeps for its damping, beside two
-// coincident rings no substep could save, took 57,000 substeps (10 s) a step to fail.
-constexpr int kMinRescueSubsteps = 512;
-constexpr int kRescueFactor = 4;
-
-// runs stage() and adds the seconds it took to `seconds`
-template <class Stage>
-void timed(Real& seconds, Stage&& stage) {
-  const auto start = std::chrono::steady_clock::now();
-  stage();
-  seconds += std::chrono::duration<Real>(std::chrono::steady_clock::now() - start).count();
-}
+// A failing step's retries take at most 512 substeps in all, or 4 times the substeps of the
+// first attempt when that is more: a step that cannot be rescued then costs a few normal steps,
+// not seconds. A body that needed 445 substeps for its damping, beside two coincident rings no
+// substep could save, took 57,000 substeps (10 s) a step to fail.
+constexpr RescuePolicy kRescue{.max_doublings = 6, .min_budget = 512, .budget_factor = 4};
 
 }  // namespace
 
@@ -72,28 +62,19 @@ const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
 
   saved_.resize(bodies_.size());
   for (std::size_t b = 0; b < bodies_.size(); ++b) bodies_[b].save_step_state(saved_[b]);
-  bool ok = attempt(h, substeps, gravity, colliders, yield_point);
-  const int rescue_budget = std::max(kMinRescueSubsteps, kRescueFactor * substeps);
-  int rescue_substeps = 0;
-  for (int doubling = 0;
-       !ok && doubling < kMaxSubstepDoublings && rescue_substeps + 2 * substeps <= rescue_budget;
-       ++doubling) {
-    restore();
-    substeps *= 2;
-    rescue_substeps += substeps;
-    stats_.rescued = true;
-    ok = attempt(h, substeps, gravity, colliders, yield_point);
-  }
-  if (!ok) {
+  const RescueOutcome outcome = step_with_rescue(
+      substeps, kRescue, [&](int n) { return attempt(h, n, gravity, colliders, yield_point); },
+      [&] { restore(); });
+  stats_.rescued = outcome.rescued;
+  if (!outcome.ok) {
     restore();
     for (SolidBody& body : bodies_) {
       body.previous_positions() = body.positions();
       for (Vec3& v : body.velocities()) v.setZero();
     }
-    stats_.rescued = false;
     stats_.unrecoverable = true;
   }
-  stats_.substeps = substeps;
+  stats_.substeps = outcome.substeps;
   for (SolidBody& body : bodies_) body.clear_external_forces();
   return stats_;
 }
@@ -102,33 +83,35 @@ bool SolidSystem::attempt(Real h, int substeps, const Vec3& gravity,
                           std::span<const Collider> colliders,
                           const std::function<void()>& yield_point) {
   const Real substep_length = h / substeps;
+  StepProfile& profile = stats_.profile;
   for (int s = 0; s < substeps; ++s) {
-    timed(stats_.times.integration, [&] {
+    timed(profile, StepStage::kIntegration, [&] {
       for (SolidBody& body : bodies_) body.advance(substep_length, gravity);
     });
     // a non-finite node must not reach the spatial hash
-    if (!healthy(false)) return false;
+    if (!timed(profile, StepStage::kHealth, [&] { return healthy(false); })) return false;
     if (yield_point) yield_point();
     substep(substep_length, gravity, colliders);
-    if (!healthy(true)) return false;
+    if (!timed(profile, StepStage::kHealth, [&] { return healthy(true); })) return false;
     if (yield_point) yield_point();
   }
   return true;
 }
 
 void SolidSystem::substep(Real h, const Vec3& gravity, std::span<const Collider> colliders) {
-  timed(stats_.times.detection, [&] { detector_.detect(bodies_, collisions_); });
-  timed(stats_.times.triangles, [&] { detector_.collect_triangles(bodies_, collisions_); });
-  timed(stats_.times.penetration,
+  timed(stats_.profile, StepStage::kDetection, [&] { detector_.detect(bodies_, collisions_); });
+  timed(stats_.profile, StepStage::kTriangles,
+        [&] { detector_.collect_triangles(bodies_, collisions_); });
+  timed(stats_.profile, StepStage::kPenetration,
         [&] { penetration_.compute(bodies_, collisions_, settings_.min_depth, contacts_); });
-  timed(stats_.times.resolution, [&] {
+  timed(stats_.profile, StepStage::kResolution, [&] {
     contact_surface_.resolve(bodies_, contacts_, settings_.contact_iterations, settings_.friction,
                              h, gravity);
   });
-  timed(stats_.times.colliders, [&] {
+  timed(stats_.profile, StepStage::kColliders, [&] {
     for (SolidBody& body : bodies_) resolve_collider_contacts(colliders, body);
   });
-  timed(stats_.times.finish, [&] {
+  timed(stats_.profile, StepStage::kFinish, [&] {
     for (SolidBody& body : bodies_) body.finish_step(h);
   });
   stats_.colliding_nodes = collisions_.nodes.size();

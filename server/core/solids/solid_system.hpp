@@ -13,6 +13,7 @@
 #include "core/solids/penetration_depth.hpp"
 #include "core/solids/solid_body.hpp"
 #include "core/solids/solid_collision_detection.hpp"
+#include "core/step/step_profile.hpp"
 
 namespace felt {
 
@@ -25,27 +26,24 @@ struct SolidStepSettings {
   Real max_speed = 100;
 };
 
-/// Seconds spent in each stage during the last step, summed over its substeps and any redone
-/// attempts (Table 7.4).
-struct SolidStageTimes {
-  Real integration = 0;  ///< internal forces and Verlet, one call (SolidBody::advance)
-  Real detection = 0, triangles = 0, penetration = 0, resolution = 0;
-  Real colliders = 0;  ///< static colliders
-  Real finish = 0;     ///< velocities from the positions (Table 7.4 FI)
-};
-
 struct SolidStepStats {
   int substeps = 0;
   std::size_t colliding_nodes = 0;      ///< in the last substep (Table 7.3 PKU)
   std::size_t colliding_triangles = 0;  ///< in the last substep (Table 7.3 PKT)
   bool rescued = false;        ///< a substep left a non-finite or exploding state and was redone
   bool unrecoverable = false;  ///< redoing did not help; the bodies were rolled back and stopped
-  SolidStageTimes times;
+  StepProfile profile;         ///< the stages of Table 7.4, and the health check
 };
 
 /// The soft solids of a world, stepped together because they collide with each other.
 class SolidSystem {
  public:
+  /// The stages a solid step goes through, in order (Table 7.4).
+  static constexpr std::array kStages{StepStage::kIntegration, StepStage::kDetection,
+                                      StepStage::kTriangles,   StepStage::kPenetration,
+                                      StepStage::kResolution,  StepStage::kColliders,
+                                      StepStage::kFinish,      StepStage::kHealth};
+
   explicit SolidSystem(SolidStepSettings settings = {});
 
   /// Adds a body and returns its index.

@@ -1,14 +1,16 @@
 #include "core/world/world.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include "core/math/check.hpp"
 
 namespace felt {
 
 World::World(WorldSettings settings, SolidStepSettings solid_settings)
-    : settings_(settings), solids_(solid_settings) {}
+    : settings_(settings),
+      cloths_(ClothStepSettings{settings.max_speed, settings.max_energy_growth,
+                                RescuePolicy{.max_doublings = settings.max_substep_doublings}}),
+      solids_(solid_settings) {}
 
 namespace {
 
@@ -44,11 +46,7 @@ BodyId World::allocate(BodyRef ref) {
 
 BodyId World::add_body(ClothBody body) {
   body.set_gravity(settings_.gravity);
-  cloths_.push_back(std::move(body));
-  self_collision_.emplace_back();
-  energy_valid_ = false;
-  cloth_ids_.push_back(
-      allocate({BodyRef::Kind::kCloth, static_cast<std::uint32_t>(cloths_.size() - 1)}));
+  cloth_ids_.push_back(allocate({BodyRef::Kind::kCloth, cloths_.add_body(std::move(body))}));
   return cloth_ids_.back();
 }
 
@@ -75,10 +73,8 @@ void World::remove_body(BodyId id) {
   const auto at = [&](auto& v) { return v.begin() + ref.index; };
   switch (ref.kind) {
     case BodyRef::Kind::kCloth:
-      cloths_.erase(at(cloths_));
-      self_collision_.erase(at(self_collision_));
+      cloths_.remove_body(ref.index);
       cloth_ids_.erase(at(cloth_ids_));
-      energy_valid_ = false;
       break;
     case BodyRef::Kind::kSolid:
       solids_.remove_body(ref.index);
@@ -131,7 +127,7 @@ ClothBody* World::cloth(BodyId id) {
 
 const ClothBody* World::cloth(BodyId id) const {
   const BodyRef* ref = live(id, BodyRef::Kind::kCloth);
-  return ref ? &cloths_[ref->index] : nullptr;
+  return ref ? &cloths_.bodies()[ref->index] : nullptr;
 }
 
 SolidBody* World::solid(BodyId id) {
@@ -151,10 +147,8 @@ std::size_t World::surface_vertex_count(BodyId id) const {
 }
 
 void World::add_surface_force(BodyId id, std::uint32_t vertex, const Vec3& force) {
-  // straight to the body: an external force does not change the energies the health check
-  // carries over, so it must not make the next step recompute them (as cloths() would)
   if (const BodyRef* ref = live(id, BodyRef::Kind::kCloth)) {
-    cloths_[ref->index].add_external_force(vertex, force);
+    cloths_.add_external_force(ref->index, vertex, force);
     return;
   }
   SolidBody* solid_body = solid(id);
@@ -195,39 +189,17 @@ StepReport World::step(const std::function<void()>& yield_point) {
   step_colliders_.assign(colliders_.begin(), colliders_.end());
   step_colliders_.insert(step_colliders_.end(), moving_colliders_.begin(), moving_colliders_.end());
   moving_colliders_.clear();
-  if (!energy_valid_) {
-    energy_.resize(cloths_.size());
-    for (std::size_t b = 0; b < cloths_.size(); ++b) {
-      energy_[b] = cloths_[b].kinetic_energy() + cloths_[b].elastic_energy();
+  const ClothStepStats& cloth =
+      cloths_.step(time_, settings_.time_step, step_colliders_, yield_point);
+  if (cloth.rescued) report.flags |= kStepRescued;
+  if (!cloth.unrecoverable.empty()) {
+    report.flags |= kStepUnrecoverable;
+    for (std::uint32_t index : cloth.unrecoverable) {
+      report.unrecoverable_bodies.push_back(cloth_ids_[index]);
     }
   }
-  for (std::size_t b = 0; b < cloths_.size(); ++b) {
-    ClothBody& body = cloths_[b];
-    // copy-assignment into equally sized vectors reuses their storage: no allocation
-    backup_.x = body.state().x;
-    backup_.v = body.state().v;
-    int substeps = 1;
-    bool ok = try_step(b, substeps, energy_[b], yield_point);
-    for (int retry = 0; !ok && retry < settings_.max_substep_doublings; ++retry) {
-      body.state().x = backup_.x;
-      body.state().v = backup_.v;
-      body.integrator().reset();
-      substeps *= 2;
-      ok = try_step(b, substeps, energy_[b], yield_point);
-    }
-    if (ok && substeps > 1) report.flags |= kStepRescued;
-    if (!ok) {
-      body.state().x = backup_.x;
-      for (Vec3& v : body.state().v) v.setZero();
-      body.integrator().reset();
-      energy_[b] = body.elastic_energy();
-      report.flags |= kStepUnrecoverable;
-      report.unrecoverable_bodies.push_back(cloth_ids_[b]);
-    }
-    report.max_substeps = std::max(report.max_substeps, substeps);
-    body.clear_external_forces();
-  }
-  energy_valid_ = true;
+  report.max_substeps = cloth.substeps;
+  report.cloth_profile = cloth.profile;
   if (!solids_.bodies().empty()) {
     if (yield_point) yield_point();
     const SolidStepStats& solid =
@@ -240,58 +212,12 @@ StepReport World::step(const std::function<void()>& yield_point) {
                                          solid_ids_.end());
     }
     report.max_substeps = std::max(report.max_substeps, solid.substeps);
+    report.solid_profile = solid.profile;
   }
   ++step_count_;
   // advance by multiplication, not accumulation, so long runs keep an exact clock
   time_ = static_cast<Real>(step_count_) * settings_.time_step;
   return report;
-}
-
-bool World::try_step(std::size_t cloth, int substeps, Real& energy,
-                     const std::function<void()>& yield_point) {
-  ClothBody& body = cloths_[cloth];
-  const Real h = settings_.time_step / substeps;
-  for (int s = 0; s < substeps; ++s) {
-    body.integrator().step(body, body.state(), time_ + s * h, h);
-    if (yield_point) yield_point();
-    limit_stretch(body.model(), body.inv_mass(), body.params().stretch, h, body.state());
-    resolve_collisions(step_colliders_, body.inv_mass(), body.params().thickness, body.state());
-    if (body.params().self_collision) {
-      self_collision_[cloth].resolve(body.model().triangles, body.inv_mass(),
-                                     body.params().thickness, body.state());
-    }
-    apply_constraints(body.constraints(), body.state());
-    if (yield_point) yield_point();
-  }
-  return healthy(body, energy);
-}
-
-bool World::healthy(const ClothBody& body, Real& energy) const {
-  const ParticleState& state = body.state();
-  const Real max_speed_sq = settings_.max_speed * settings_.max_speed;
-  // work by gravity and external forces over the step, estimated from the displacement and
-  // from the mean of the start and end velocities, whichever is larger: the first misses the
-  // energy explicit Euler gains in a step from rest (positions have not moved yet), the second
-  // misjudges a step in which substeps turned a velocity around
-  Real work_by_displacement = 0;
-  Real work_by_velocity = 0;
-  const Real h = settings_.time_step;
-  for (std::size_t p = 0; p < state.size(); ++p) {
-    if (!state.x[p].allFinite()) return false;
-    const Real speed_sq = state.v[p].squaredNorm();
-    if (!std::isfinite(speed_sq) || speed_sq > max_speed_sq) return false;
-    const Vec3 force = body.model().mass[p] * body.gravity() + body.external_forces()[p];
-    work_by_displacement += force.dot(state.x[p] - backup_.x[p]);
-    work_by_velocity += force.dot(0.5 * h * (state.v[p] + backup_.v[p]));
-  }
-  const Real work = std::max({work_by_displacement, work_by_velocity, Real{0}});
-  const Real energy_after = body.kinetic_energy() + body.elastic_energy();
-  const Real growth = settings_.max_energy_growth;
-  // the floor keeps rounding noise of a body at rest from counting as growth
-  constexpr Real kEnergyFloor = 1e-9;
-  if (energy_after > growth * (energy + work) + kEnergyFloor) return false;
-  energy = energy_after;
-  return true;
 }
 
 }  // namespace felt

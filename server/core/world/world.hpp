@@ -5,8 +5,7 @@
 #include <functional>
 #include <vector>
 
-#include "core/cloth/cloth_body.hpp"
-#include "core/cloth/cloth_self_collision.hpp"
+#include "core/cloth/cloth_system.hpp"
 #include "core/collision/collider.hpp"
 #include "core/solids/solid_system.hpp"
 
@@ -49,6 +48,8 @@ struct StepReport {
   std::uint32_t flags = kStepOk;
   int max_substeps = 1;                             ///< the most substeps any body needed
   std::vector<std::uint32_t> unrecoverable_bodies;  ///< ids; empty (no allocation) when none
+  StepProfile cloth_profile;  ///< where the cloths' step spent its time (ClothSystem::kStages)
+  StepProfile solid_profile;  ///< and the solids' (SolidSystem::kStages)
 };
 
 class World {
@@ -94,11 +95,9 @@ class World {
 
   /// Cloths by index among cloths. Mutable access: anything that edits a cloth through it makes
   /// the next step recompute the energies its health check starts from.
-  std::vector<ClothBody>& cloths() {
-    energy_valid_ = false;
-    return cloths_;
-  }
-  const std::vector<ClothBody>& cloths() const { return cloths_; }
+  std::vector<ClothBody>& cloths() { return cloths_.bodies(); }
+  const std::vector<ClothBody>& cloths() const { return cloths_.bodies(); }
+  const ClothSystem& cloth_system() const { return cloths_; }
   SolidSystem& solids() { return solids_; }
   const SolidSystem& solids() const { return solids_; }
   const std::vector<Collider>& colliders() const { return colliders_; }
@@ -124,13 +123,6 @@ class World {
   void set_step_count(std::uint64_t steps);
 
  private:
-  /// Steps one body over [time_, time_ + h] in `substeps` equal parts; false when unhealthy.
-  /// `energy` holds the body's kinetic plus elastic energy at the start, and at the end when
-  /// the step was healthy.
-  bool try_step(std::size_t cloth, int substeps, Real& energy,
-                const std::function<void()>& yield_point);
-  bool healthy(const ClothBody& body, Real& energy) const;
-
   struct Slot {
     std::uint16_t generation = 0;  ///< of the body in it (or the last one)
     std::uint16_t issued = 0;      ///< the highest generation ever handed out for the slot
@@ -144,9 +136,8 @@ class World {
   void shift_indices(BodyRef::Kind kind, std::uint32_t index);
 
   WorldSettings settings_;
-  std::vector<ClothBody> cloths_;
-  std::vector<BodyId> cloth_ids_;                   ///< body id of each cloth
-  std::vector<ClothSelfCollision> self_collision_;  ///< per cloth; keeps its hash between steps
+  ClothSystem cloths_;
+  std::vector<BodyId> cloth_ids_;  ///< body id of each cloth
   SolidSystem solids_;
   std::vector<BodyId> solid_ids_;  ///< body id of each solid
   std::vector<Collider> colliders_;
@@ -155,11 +146,6 @@ class World {
   std::size_t live_ = 0;
   std::vector<Collider> moving_colliders_;
   std::vector<Collider> step_colliders_;  ///< the scene's and the moving ones, for one step
-  /// kinetic + elastic energy of each body after the last step, reused as the next step's
-  /// starting energy unless bodies() was handed out in between
-  std::vector<Real> energy_;
-  bool energy_valid_ = false;
-  ParticleState backup_;
   Real time_ = 0;
   std::uint64_t step_count_ = 0;
 };

@@ -1,0 +1,94 @@
+#pragma once
+// All the cloths of a world and the per-step pipeline that moves each of them: the integrator,
+// stretch limiting, the colliders, self-collision and the particle constraints, each (sub)step,
+// then the health check, with rollback and substeps for a step that fails it.
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "core/cloth/cloth_body.hpp"
+#include "core/cloth/cloth_self_collision.hpp"
+#include "core/collision/collider.hpp"
+#include "core/step/step_profile.hpp"
+#include "core/step/substep_rescue.hpp"
+
+namespace felt {
+
+struct ClothStepSettings {
+  /// m/s; a particle faster than this is taken as an exploding state and the step is retried
+  Real max_speed = 100;
+  /// A step after which kinetic plus elastic energy exceeds this factor times what it was plus
+  /// the work gravity and external forces did is taken as exploding (an unstable mode grows
+  /// geometrically; a passive cloth can only lose energy).
+  Real max_energy_growth = 2;
+  RescuePolicy rescue;
+};
+
+struct ClothStepStats {
+  int substeps = 1;      ///< the most substeps any cloth needed
+  bool rescued = false;  ///< some cloth's step failed and was redone with substeps
+  /// cloths (indices) that could not be rescued: rolled back and stopped; no allocation while
+  /// it stays empty
+  std::vector<std::uint32_t> unrecoverable;
+  StepProfile profile;
+};
+
+/// The cloths of a world. Each steps on its own: cloths do not collide with each other.
+class ClothSystem {
+ public:
+  /// The stages a cloth step goes through, in order.
+  static constexpr std::array kStages{StepStage::kIntegration, StepStage::kStretchLimit,
+                                      StepStage::kColliders,   StepStage::kSelfCollision,
+                                      StepStage::kConstraints, StepStage::kHealth};
+
+  explicit ClothSystem(ClothStepSettings settings = {}) : settings_(settings) {}
+
+  const ClothStepSettings& settings() const { return settings_; }
+
+  /// Adds a body and returns its index.
+  std::uint32_t add_body(ClothBody body);
+  /// Removes the body at `index`; the later ones move down by one.
+  void remove_body(std::uint32_t index);
+  /// Mutable access: anything that edits a cloth through it makes the next step recompute the
+  /// energies its health check starts from.
+  std::vector<ClothBody>& bodies() {
+    energy_valid_ = false;
+    return bodies_;
+  }
+  const std::vector<ClothBody>& bodies() const { return bodies_; }
+  /// A force on particle `p` of cloth `index` for the next step. An external force does not
+  /// change the energies the health check carries over, so unlike bodies() this keeps them.
+  void add_external_force(std::uint32_t index, std::uint32_t p, const Vec3& force) {
+    bodies_[index].add_external_force(p, force);
+  }
+
+  /// Advances every cloth from t to t + h. A cloth whose step leaves a non-finite or exploding
+  /// state is rolled back and stepped again with 2, 4, ... substeps; if none works it is rolled
+  /// back and brought to rest. External forces are cleared afterwards. `yield_point`, if
+  /// given, is called between a substep's phases (as in World::step).
+  const ClothStepStats& step(Real t, Real h, std::span<const Collider> colliders,
+                             const std::function<void()>& yield_point = {});
+  const ClothStepStats& last_stats() const { return stats_; }
+
+ private:
+  /// Steps cloth `index` over [t, t + h] in `substeps` equal parts; false when unhealthy.
+  /// `energy` holds the body's kinetic plus elastic energy at the start, and at the end when
+  /// the step was healthy.
+  bool attempt(std::size_t index, Real t, Real h, int substeps, std::span<const Collider> colliders,
+               Real& energy, const std::function<void()>& yield_point);
+  bool healthy(const ClothBody& body, Real h, Real& energy) const;
+
+  ClothStepSettings settings_;
+  std::vector<ClothBody> bodies_;
+  std::vector<ClothSelfCollision> self_collision_;  ///< per cloth; keeps its hash between steps
+  /// kinetic + elastic energy of each body after the last step, reused as the next step's
+  /// starting energy unless bodies() was handed out in between
+  std::vector<Real> energy_;
+  bool energy_valid_ = false;
+  ParticleState backup_;
+  ClothStepStats stats_;
+};
+
+}  // namespace felt
