@@ -241,9 +241,8 @@ TEST_F(FeltdTest, BodyParametersChangeHowAClothHangs) {
   EXPECT_LT(stiff.max_strain, 0.01);
   EXPECT_GT(softer.max_strain, 0.2);
   EXPECT_LT(softer.lowest, stiff.lowest - 0.05);
-  // the stretch limit holds every spring near 5 % (5.4 %: a few rounds of Provot's
-  // correction per step, not an exact projection)
-  EXPECT_LT(limited.max_strain, 0.06);
+  // the stretch limit holds every spring to 5 %, within 1 % of it
+  EXPECT_LE(limited.max_strain, 0.05 * 1.01);
   EXPECT_GT(limited.lowest, softer.lowest + 0.03);
 }
 

@@ -193,7 +193,7 @@ Real ClothBody::elastic_energy() const {
 Real ClothBody::max_strain() const {
   Real strain = 0;
   for (const Spring& s : model_->springs) {
-    if (s.kind == SpringKind::kBend || s.rest_length <= 0) continue;
+    if (!is_limited(s)) continue;
     strain = std::max(strain, (state_.x[s.i] - state_.x[s.j]).norm() / s.rest_length - 1);
   }
   return strain;

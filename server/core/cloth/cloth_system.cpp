@@ -10,6 +10,7 @@ namespace felt {
 std::uint32_t ClothSystem::add_body(ClothBody body) {
   bodies_.push_back(std::move(body));
   self_collision_.emplace_back();
+  limiters_.emplace_back();
   energy_valid_ = false;
   return static_cast<std::uint32_t>(bodies_.size() - 1);
 }
@@ -18,6 +19,7 @@ void ClothSystem::remove_body(std::uint32_t index) {
   FELT_CHECK(index < bodies_.size());
   bodies_.erase(bodies_.begin() + index);
   self_collision_.erase(self_collision_.begin() + index);
+  limiters_.erase(limiters_.begin() + index);
   energy_valid_ = false;
 }
 
@@ -74,7 +76,8 @@ bool ClothSystem::attempt(std::size_t index, Real t, Real h, int substeps,
           [&] { body.integrator().step(body, body.state(), t + s * dt, dt); });
     if (yield_point) yield_point();
     timed(profile, StepStage::kStretchLimit, [&] {
-      limit_stretch(body.model(), body.inv_mass(), body.params().stretch, dt, body.state());
+      limiters_[index].apply(body.model(), body.inv_mass(), body.params().stretch, dt,
+                             body.state());
     });
     timed(profile, StepStage::kColliders, [&] {
       resolve_collisions(colliders, body.inv_mass(), body.params().thickness, body.state());

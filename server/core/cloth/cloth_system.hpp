@@ -83,6 +83,7 @@ class ClothSystem {
   ClothStepSettings settings_;
   std::vector<ClothBody> bodies_;
   std::vector<ClothSelfCollision> self_collision_;  ///< per cloth; keeps its hash between steps
+  std::vector<StretchLimiter> limiters_;            ///< per cloth; keeps its long range attachments
   /// kinetic + elastic energy of each body after the last step, reused as the next step's
   /// starting energy unless bodies() was handed out in between
   std::vector<Real> energy_;

@@ -18,6 +18,12 @@ struct Spring {
   SpringKind kind = SpringKind::kStructural;
 };
 
+/// Whether stretch limiting holds the spring and strain is measured on it: structural and shear
+/// springs of positive rest length (bend springs span two edges and may fold).
+inline bool is_limited(const Spring& s) {
+  return s.kind != SpringKind::kBend && s.rest_length > 0;
+}
+
 /// Stiffness and damping of one spring kind.
 struct SpringParams {
   bool enabled = true;

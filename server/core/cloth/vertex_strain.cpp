@@ -6,7 +6,7 @@ void vertex_strain(const ClothModel& model, std::span<const Vec3> x, std::vector
   out.assign(x.size(), 0.0f);
   std::vector<std::uint16_t> springs_at(x.size(), 0);
   for (const Spring& s : model.springs) {
-    if (s.kind == SpringKind::kBend || s.rest_length <= 0) continue;
+    if (!is_limited(s)) continue;
     const auto strain = static_cast<float>((x[s.i] - x[s.j]).norm() / s.rest_length - 1);
     out[s.i] += strain;
     out[s.j] += strain;
