@@ -1,62 +1,26 @@
-// feltd: the Felt daemon (`serve`) and the headless batch runner (`run`).
+#include "feltd/serve_command.hpp"
 
-#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <span>
 #include <thread>
 
-#include <CLI/CLI.hpp>
 #include <boost/asio.hpp>
-#include <nlohmann/json.hpp>
 
-#include "command_line/usage_status.hpp"
+#include "feltd/scene_options.hpp"
 #include "net/endpoint_text.hpp"
-#include "net/server.hpp"
-#include "runtime/batch_run.hpp"
 #include "scene/scene_loader.hpp"
-#include "scene/scene_overrides.hpp"
 #include "scheduling/latency_options.hpp"
 #include "scheduling/thread_name.hpp"
 #include "wire/host_port.hpp"
 
+namespace felt::feltd {
 namespace {
 
 namespace asio = boost::asio;
-using felt::SceneId;
-
-struct ServeOptions {
-  std::string listen = "127.0.0.1:7450";
-  std::string web;                       ///< HOST:PORT of the page and its WebSocket; empty: off
-  std::string web_root = FELT_WEB_ROOT;  ///< the page's build folder
-  std::string scene_dir = "scenes";
-  std::vector<std::string> scenes;
-  /// who may pause, step, scale, reset, save and restore the --scene scenes: anyone, none
-  std::string server_scenes_control = "anyone";
-  bool status = false;
-  std::string log_level = "info";
-  unsigned io_threads = 2;
-  int realtime_priority = 0;       ///< SCHED_FIFO priority of the network threads; 0: normal policy
-  int network_slice_us = 100;      ///< time slice the network threads ask for; 0: the kernel's
-  int cpu_wakeup_latency_us = -1;  ///< held while serving; 0: idle cores poll; -1: the system's
-  int spin_idle_cores_ms = 0;      ///< idle cores spin this long after a haptic update; 0: never
-  felt::net::ServerOptions limits;
-};
-
-struct RunOptions {
-  std::string scene;
-  std::string scene_dir;
-  std::uint64_t steps = 0;
-  std::vector<std::string> overrides;
-  std::string stats_json;
-  std::string record;
-  std::string replay;
-};
 
 /// The network threads' requests of the scheduler, named as feltd's flags are.
 const felt::LatencyNames kNetworkLatencyNames{"network threads", "--network-slice-us", "--realtime",
@@ -73,13 +37,6 @@ felt::LatencyOptions latency_options(const ServeOptions& options) {
   return latency;
 }
 
-/// Mesh files of a scene resolve inside the scene directory, as they do for clients.
-felt::SceneLoadOptions scene_options(const std::filesystem::path& scene_dir) {
-  felt::SceneLoadOptions options;
-  options.asset_root = scene_dir;
-  return options;
-}
-
 /// Prints one status line a second for the first scene: what `scripts/run` shows.
 void print_status(felt::SceneRegistry& scenes, SceneId scene, felt::net::Server& server,
                   std::uint64_t& last_haptic_updates) {
@@ -92,6 +49,8 @@ void print_status(felt::SceneRegistry& scenes, SceneId scene, felt::net::Server&
   std::fflush(stdout);
   last_haptic_updates = stats.haptic_updates;
 }
+
+}  // namespace
 
 int serve(const ServeOptions& options) {
   const auto address = felt::wire::parse_host_port(options.listen);
@@ -242,213 +201,51 @@ int serve(const ServeOptions& options) {
   return 0;
 }
 
-/// `profile`'s stages of `stages`, in milliseconds, by name.
-nlohmann::json stage_ms_to_json(const felt::StepProfile& profile,
-                                std::span<const felt::StepStage> stages) {
-  nlohmann::json json = nlohmann::json::object();
-  for (felt::StepStage stage : stages) json[felt::stage_name(stage)] = 1e3 * profile[stage];
-  return json;
-}
-
-nlohmann::json stats_to_json(const felt::BatchRunStats& stats) {
-  nlohmann::json bodies = nlohmann::json::array();
-  // the scene's size the way the second thesis's Table 7.2 counts it: all solids together
-  nlohmann::json solid_totals = {{"nodes", 0}, {"edges", 0},         {"triangles", 0},
-                                 {"tets", 0},  {"fine_vertices", 0}, {"fine_triangles", 0}};
-  for (const felt::BodyRunStats& body : stats.bodies) {
-    nlohmann::json entry = {{"name", body.name},
-                            {"kind", body.kind},
-                            {"particles", body.particles},
-                            {"edges", body.edges},
-                            {"triangles", body.triangles},
-                            {"tets", body.tets},
-                            {"kinetic_energy", body.kinetic_energy}};
-    if (body.kind == "cloth") {
-      entry["max_strain"] = body.max_strain;
-    } else {
-      entry["fine_vertices"] = body.fine_vertices;
-      entry["fine_triangles"] = body.fine_triangles;
-      entry["volume_ratio"] = body.volume_ratio;
-      for (const auto& [key, count] :
-           {std::pair{"nodes", body.particles}, std::pair{"edges", body.edges},
-            std::pair{"triangles", body.triangles}, std::pair{"tets", body.tets},
-            std::pair{"fine_vertices", body.fine_vertices},
-            std::pair{"fine_triangles", body.fine_triangles}}) {
-        solid_totals[key] = solid_totals[key].get<std::size_t>() + count;
-      }
-    }
-    bodies.push_back(std::move(entry));
-  }
-  const felt::SolidRunStats& solids = stats.solids;
-  const felt::HapticRunStats& haptics = stats.haptics;
-  return {{"steps", stats.steps},
-          {"sim_time", stats.sim_time},
-          {"wall_seconds", stats.wall_seconds},
-          {"ms_per_step", stats.ms_per_step},
-          {"nonfinite", stats.nonfinite},
-          {"rescued_steps", stats.rescued_steps},
-          {"unrecoverable_steps", stats.unrecoverable_steps},
-          {"bodies", bodies},
-          {"solids",
-           {{"totals", solid_totals},
-            {"mean_colliding_nodes", solids.mean_colliding_nodes},
-            {"max_colliding_nodes", solids.max_colliding_nodes},
-            {"mean_colliding_triangles", solids.mean_colliding_triangles},
-            {"max_colliding_triangles", solids.max_colliding_triangles},
-            {"max_substeps", solids.max_substeps},
-            {"mean_stage_ms", stage_ms_to_json(solids.mean, felt::SolidSystem::kStages)},
-            {"max_stage_ms", stage_ms_to_json(solids.max, felt::SolidSystem::kStages)}}},
-          {"cloth",
-           {{"max_substeps", stats.cloth.max_substeps},
-            {"mean_stage_ms", stage_ms_to_json(stats.cloth.mean, felt::ClothSystem::kStages)},
-            {"max_stage_ms", stage_ms_to_json(stats.cloth.max, felt::ClothSystem::kStages)}}},
-          {"haptics",
-           {{"ticks", haptics.ticks},
-            {"contact_ticks", haptics.contact_ticks},
-            {"mean_contact_us", haptics.mean_contact_us},
-            {"mean_free_us", haptics.mean_free_us},
-            {"max_force", haptics.max_force},
-            {"max_force_step", haptics.max_force_step},
-            {"mean_force_step", haptics.mean_force_step},
-            {"compared", haptics.compared},
-            {"equivalent", haptics.equivalent}}}};
-}
-
-int run(const RunOptions& options) {
-  auto document = felt::read_scene_json(options.scene);
-  if (!document) {
-    std::cerr << "feltd: " << document.error().what() << "\n";
-    return 2;
-  }
-  for (const std::string& assignment : options.overrides) {
-    if (auto applied = felt::apply_override(*document, assignment); !applied) {
-      std::cerr << "feltd: --set " << assignment << ": " << applied.error() << "\n";
-      return 2;
-    }
-  }
-  // without --scene-dir, meshes are looked up beside the scene file
-  const std::filesystem::path beside = std::filesystem::path(options.scene).parent_path();
-  auto scene = felt::load_scene(
-      *document, scene_options(!options.scene_dir.empty() ? std::filesystem::path(options.scene_dir)
-                               : beside.empty()           ? std::filesystem::path(".")
-                                                          : beside));
-  if (!scene) {
-    std::cerr << "feltd: " << options.scene << ": " << scene.error().what() << "\n";
-    return 2;
-  }
-  felt::BatchHaptics haptics;
-  std::vector<felt::HapticRecord> replayed;
-  if (!options.replay.empty()) {
-    std::ifstream in(options.replay);
-    auto records =
-        in ? felt::read_recording(in) : std::unexpected(std::string("cannot open the file"));
-    if (!records) {
-      std::cerr << "feltd: --replay " << options.replay << ": " << records.error() << "\n";
-      return 2;
-    }
-    replayed = std::move(*records);
-    haptics.replay = &replayed;
-  }
-  std::ofstream recording;
-  if (!options.record.empty()) {
-    recording.open(options.record);
-    if (!recording) {
-      std::cerr << "feltd: --record: cannot write " << options.record << "\n";
-      return 2;
-    }
-    haptics.record = &recording;
-  }
-  const felt::BatchRunStats stats = felt::run_batch(*scene, options.steps, haptics);
-  const nlohmann::json json = stats_to_json(stats);
-  std::printf("%llu steps, sim %.4f s, wall %.3f s, %.4f ms/step\n",
-              static_cast<unsigned long long>(stats.steps), stats.sim_time, stats.wall_seconds,
-              stats.ms_per_step);
-  if (const auto& totals = json["solids"]["totals"]; totals["nodes"].get<std::size_t>() > 0) {
-    std::printf("solids: %zu nodes, %zu edges, %zu triangles, %zu tetrahedra\n",
-                totals["nodes"].get<std::size_t>(), totals["edges"].get<std::size_t>(),
-                totals["triangles"].get<std::size_t>(), totals["tets"].get<std::size_t>());
-  }
-  if (const felt::HapticRunStats& h = stats.haptics; h.ticks > 0) {
-    std::printf(
-        "haptics: %llu ticks, %llu in contact, %.2f us/tick in contact, %.2f free, "
-        "max force %.3f N, force step max %.4f N mean %.5f N\n",
-        static_cast<unsigned long long>(h.ticks), static_cast<unsigned long long>(h.contact_ticks),
-        h.mean_contact_us, h.mean_free_us, h.max_force, h.max_force_step, h.mean_force_step);
-    if (h.compared > 0) {
-      std::printf("replay: %llu of %llu updates collision-equivalent to the recording\n",
-                  static_cast<unsigned long long>(h.equivalent),
-                  static_cast<unsigned long long>(h.compared));
-    }
-  }
-  if (stats.nonfinite) {
-    std::printf("UNSTABLE: %llu steps could not be rescued (rolled back, body stopped)\n",
-                static_cast<unsigned long long>(stats.unrecoverable_steps));
-  }
-  if (!options.stats_json.empty()) {
-    std::ofstream out(options.stats_json);
-    out << json.dump(2) << "\n";
-    if (!out) {
-      std::cerr << "feltd: cannot write " << options.stats_json << "\n";
-      return 1;
-    }
-  }
-  return stats.nonfinite ? 3 : 0;
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"feltd " FELT_VERSION " - simulation service for touching deformable things"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", "feltd " FELT_VERSION);
-
-  ServeOptions serve_options;
-  felt::net::ServerOptions& limits = serve_options.limits;
+CLI::App* add_serve_command(CLI::App& app, ServeOptions& options) {
+  felt::net::ServerOptions& limits = options.limits;
   if (const char* token = std::getenv("FELT_TOKEN")) limits.token = token;
   CLI::App* serve_cmd =
       app.add_subcommand("serve", "Serve scenes over TCP and WebSocket (protocol felt.v1)");
-  serve_cmd
-      ->add_option("--listen", serve_options.listen, "HOST:PORT to listen on; port 0 picks one")
+  serve_cmd->add_option("--listen", options.listen, "HOST:PORT to listen on; port 0 picks one")
       ->capture_default_str();
-  serve_cmd->add_option("--web", serve_options.web,
+  serve_cmd->add_option("--web", options.web,
                         "HOST:PORT to serve the page and its WebSocket (/ws) on; port 0 picks one "
                         "(default: off)");
-  serve_cmd->add_option("--web-root", serve_options.web_root, "The page's build folder")
+  serve_cmd->add_option("--web-root", options.web_root, "The page's build folder")
       ->capture_default_str();
   serve_cmd
-      ->add_option("--scene-dir", serve_options.scene_dir,
-                   "Directory clients load scenes from by name")
+      ->add_option("--scene-dir", options.scene_dir, "Directory clients load scenes from by name")
       ->capture_default_str();
   serve_cmd
-      ->add_option("--scene", serve_options.scenes,
+      ->add_option("--scene", options.scenes,
                    "Scene file to load at start; the first is the one new clients join")
       ->check(CLI::ExistingFile);
   serve_cmd
-      ->add_option("--server-scenes-control", serve_options.server_scenes_control,
+      ->add_option("--server-scenes-control", options.server_scenes_control,
                    "Who may pause, step, scale, reset, save and restore the --scene scenes: "
                    "anyone in them, or none (clients still watch, touch and change bodies)")
       ->check(CLI::IsMember({"anyone", "none"}))
       ->capture_default_str();
-  serve_cmd->add_flag("--status", serve_options.status, "Print a status line every second");
+  serve_cmd->add_flag("--status", options.status, "Print a status line every second");
   serve_cmd
-      ->add_option("--log-level", serve_options.log_level,
+      ->add_option("--log-level", options.log_level,
                    "What to log on standard error, one line each: off, error, warning (refusals "
                    "of a limit), info (clients, scenes, shutdown) or debug (connections)")
       ->check(CLI::IsMember({"off", "error", "warning", "info", "debug"}))
       ->capture_default_str();
   serve_cmd
-      ->add_option("--io-threads", serve_options.io_threads,
+      ->add_option("--io-threads", options.io_threads,
                    "Threads that run the network (each client's requests stay in order)")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
   serve_cmd
-      ->add_option("--realtime", serve_options.realtime_priority,
+      ->add_option("--realtime", options.realtime_priority,
                    "Run the network threads under SCHED_FIFO at this priority (1-99; 0: off) "
                    "so that haptic updates are answered at once on a busy machine")
       ->check(CLI::Range(0, felt::kMaxRealtimePriority))
       ->capture_default_str();
   serve_cmd
-      ->add_option("--network-slice-us", serve_options.network_slice_us,
+      ->add_option("--network-slice-us", options.network_slice_us,
                    "Time slice the network threads ask the kernel for (Linux 6.12+), so that a "
                    "haptic update preempts a busy physics thread at once (0: the kernel's)")
       ->check(CLI::Range(0, 0) | CLI::Range(static_cast<int>(felt::kMinTimeSlice.count()),
@@ -462,13 +259,13 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, felt::kMaxNice))
       ->capture_default_str();
   serve_cmd
-      ->add_option("--cpu-wakeup-latency-us", serve_options.cpu_wakeup_latency_us,
+      ->add_option("--cpu-wakeup-latency-us", options.cpu_wakeup_latency_us,
                    "Hold every idle core's wake-up latency at most this (system-wide, root; 0: "
                    "idle cores poll, so an update wakes the network at once; -1: the system's)")
       ->check(CLI::Range(-1, static_cast<int>(felt::kMaxCpuWakeupLatency.count())))
       ->capture_default_str();
   serve_cmd
-      ->add_option("--spin-idle-cores-ms", serve_options.spin_idle_cores_ms,
+      ->add_option("--spin-idle-cores-ms", options.spin_idle_cores_ms,
                    "Keep idle cores awake this long after each haptic update, with a spinning "
                    "thread per core that yields to any other (no privilege; 0: let them halt; "
                    "helps one device's median, docs/results/idle_core_spinners.md)")
@@ -527,33 +324,7 @@ int main(int argc, char** argv) {
                    "refused)")
       ->check(CLI::Range(1.0, 1000.0))
       ->capture_default_str();
-
-  RunOptions run_options;
-  CLI::App* run_cmd = app.add_subcommand("run", "Step a scene headless, without a network");
-  run_cmd->add_option("scene", run_options.scene, "Scene JSON file")
-      ->required()
-      ->check(CLI::ExistingFile);
-  run_cmd->add_option("--steps", run_options.steps, "Number of steps")
-      ->required()
-      ->check(CLI::PositiveNumber);
-  run_cmd->add_option(
-      "--set", run_options.overrides,
-      "KEY=VALUE override, KEY a dotted path (bodies.0.integrator), VALUE JSON or a string");
-  run_cmd->add_option("--scene-dir", run_options.scene_dir,
-                      "Directory mesh files resolve in (default: the scene file's directory)");
-  run_cmd->add_option("--stats-json", run_options.stats_json, "Write run statistics to this file");
-  run_cmd->add_option("--record", run_options.record,
-                      "Write every scripted-device update (position, contact, force) to this CSV");
-  run_cmd
-      ->add_option("--replay", run_options.replay,
-                   "Drive the devices from a --record CSV and compare their contacts with it")
-      ->check(CLI::ExistingFile);
-
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return felt::usage_status(app, e);
-  }
-  if (serve_cmd->parsed()) return serve(serve_options);
-  return run(run_options);
+  return serve_cmd;
 }
+
+}  // namespace felt::feltd
