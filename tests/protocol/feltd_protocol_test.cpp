@@ -1,12 +1,7 @@
 // End to end: the real feltd on port 0, driven through felt_client over loopback.
 
-#include <arpa/inet.h>
-#include <ifaddrs.h>
-#include <net/if.h>
-#include <netinet/in.h>
 #include <signal.h>
 #include <sys/socket.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -18,7 +13,6 @@
 #include <gtest/gtest.h>
 
 #include "feltd_fixture.hpp"
-#include "support/process_threads.hpp"
 #include "wire/frame_codec.hpp"
 #include "wire/message_codec.hpp"
 
@@ -137,95 +131,6 @@ TEST_F(FeltdTest, AForceUpdateEchoesTheClientsTimeAndStampsTheServers) {
   EXPECT_LE(second.server_receive_ns(), second.server_send_ns());
 }
 
-class FeltdSpinningTest : public FeltdTest {
- protected:
-  std::vector<std::string> extra_args() const override { return {"--spin-idle-cores-ms", "20"}; }
-};
-
-TEST_F(FeltdSpinningTest, HapticUpdatesKeepIdleCoresAwakeUntilTheyStop) {
-  const std::string pid = std::to_string(server_->pid());
-  const SchedIdleThreads asleep = sched_idle_threads(pid);
-  cpu_set_t cores;  // feltd has the cores this test may run on
-  ASSERT_EQ(sched_getaffinity(0, sizeof cores, &cores), 0);
-  EXPECT_EQ(asleep.count, CPU_COUNT(&cores));
-  Client client;
-  connect(client);
-  client.hello("test");
-  // the spinners take only idle cores: on a machine busy with other tests that may take a while
-  const auto deadline = std::chrono::steady_clock::now() + 20s;
-  while (sched_idle_threads(pid).ticks == asleep.ticks &&
-         std::chrono::steady_clock::now() < deadline) {
-    client.proxy_update(0, {5, 5, 5});
-    std::this_thread::sleep_for(1ms);
-  }
-  ASSERT_GT(sched_idle_threads(pid).ticks, asleep.ticks) << "the idle cores never spun in 20 s";
-  std::this_thread::sleep_for(100ms);  // past the linger
-  const long stopped = sched_idle_threads(pid).ticks;
-  std::this_thread::sleep_for(300ms);
-  // a tick is 4 ms or 10 ms: spinning two cores would take 60 ticks or more
-  EXPECT_LE(sched_idle_threads(pid).ticks - stopped, 2);
-}
-
-TEST_F(FeltdTest, IdleCoresSpinOnlyWhenAsked) {
-  FeltdProcess spinning([] {
-    std::vector<std::string> args = default_args();
-    args.insert(args.end(), {"--spin-idle-cores-ms", "100"});
-    return args;
-  }());
-  EXPECT_GT(sched_idle_threads(std::to_string(spinning.pid())).count, 0);
-  EXPECT_EQ(sched_idle_threads(std::to_string(server_->pid())).count, 0);  // the default: off
-}
-
-/// The nices of `process`'s threads named `name`.
-std::vector<int> nices_of(int process, const std::string& name) {
-  std::vector<int> nices;
-  for (const ThreadStat& thread : process_threads(std::to_string(process))) {
-    if (thread.name == name) nices.push_back(thread.nice);
-  }
-  return nices;
-}
-
-TEST_F(FeltdTest, ThreadsOffTheHapticPathStepAsideForTheNetworkThreads) {
-  auto client = greeted("loader");
-  // a second scene, started from the loader thread, with a scripted device on a servo thread
-  client->load_scene_by_name("finger_on_hammock");
-  // feltd runs at the test's nice; a thread may raise its nice, not lower it
-  const std::vector<int> network = nices_of(server_->pid(), "felt-net-1");
-  ASSERT_EQ(network.size(), 1u);
-  const int aside = std::max(network[0], 10);
-  // a thread sets its nice as it starts, and its starter names it after starting it
-  const auto settled = [&] {
-    return nices_of(server_->pid(), "felt-physics") == std::vector<int>(2, aside) &&
-           nices_of(server_->pid(), "felt-frames") == std::vector<int>(1, aside) &&
-           nices_of(server_->pid(), "felt-servo").size() == 1;
-  };
-  const auto deadline = std::chrono::steady_clock::now() + 5s;
-  while (!settled() && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(10ms);
-  }
-  EXPECT_EQ(nices_of(server_->pid(), "felt-physics"), std::vector<int>(2, aside));
-  EXPECT_EQ(nices_of(server_->pid(), "felt-frames"), std::vector<int>(1, aside));
-  for (const ThreadStat& thread : process_threads(std::to_string(server_->pid()))) {
-    // the haptic path, and the loader, whose nice the scenes it starts would inherit
-    if (thread.name.starts_with("felt-net") || thread.name == "feltd" ||
-        thread.name == "felt-servo" || thread.name == "felt-loader") {
-      EXPECT_EQ(thread.nice, network[0]) << thread.name;
-    }
-  }
-  EXPECT_EQ(nices_of(server_->pid(), "felt-servo").size(), 1u);
-
-  FeltdProcess as_the_network([] {
-    std::vector<std::string> args = default_args();
-    args.insert(args.end(), {"--background-nice", "0"});
-    return args;
-  }());
-  EXPECT_EQ(nices_of(as_the_network.pid(), "felt-physics"), std::vector<int>(1, network[0]));
-  EXPECT_EQ(nices_of(as_the_network.pid(), "felt-frames"), std::vector<int>(1, network[0]));
-}
-
-/// A server whose physics keeps up with the wall clock beside the other tests: at the default
-/// nice 10, two test processes busy beside it left the cloth behind the finger's 1 kHz path (no
-/// contact at the end of the press, or a finger held in a dent the cloth had not moved on from).
 class FeltdLiveClothTest : public FeltdTest {
  protected:
   std::vector<std::string> extra_args() const override { return {"--background-nice", "0"}; }
@@ -526,112 +431,6 @@ TEST_F(FeltdTest, ExitsCleanlyOnSigterm) {
   ASSERT_TRUE(client.next_frame(5s));
   EXPECT_EQ(server_->stop(SIGTERM, 5s), 0);
   EXPECT_FALSE(server_->running());
-}
-
-TEST(Feltd, TokenIsRequiredWhenConfigured) {
-  auto args = default_args();
-  args.insert(args.end(), {"--token", "sesame"});
-  FeltdProcess server(args);
-  {
-    Client client;
-    client.connect("127.0.0.1", server.port());
-    try {
-      client.hello("intruder", "open");
-      FAIL() << "a wrong token was accepted";
-    } catch (const ClientError& e) {
-      EXPECT_EQ(e.code(), v1::ERROR_CODE_UNAUTHORIZED);
-    }
-    EXPECT_THROW(client.subscribe_frames(), ClientError);  // still not greeted
-    EXPECT_EQ(client.hello("friend", "sesame").protocol_version(), 1u);
-  }
-  {
-    // no endless guessing: the third wrong token closes the connection
-    Client guesser;
-    guesser.connect("127.0.0.1", server.port());
-    for (const char* guess : {"a", "b"}) {
-      expect_error([&] { guesser.hello("guesser", guess); }, v1::ERROR_CODE_UNAUTHORIZED);
-    }
-    expect_error([&] { guesser.hello("guesser", "c"); }, v1::ERROR_CODE_UNAUTHORIZED);
-    EXPECT_THROW(guesser.hello("guesser", "sesame"), ClientError);  // closed
-  }
-  EXPECT_EQ(server.stop(SIGINT, 5s), 0);
-}
-
-/// Sets an environment variable while it lives (feltd children inherit the environment).
-class ScopedEnvironment {
- public:
-  ScopedEnvironment(const char* name, const char* value) : name_(name) { setenv(name, value, 1); }
-  ~ScopedEnvironment() { unsetenv(name_); }
-  ScopedEnvironment(const ScopedEnvironment&) = delete;
-  ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
-
- private:
-  const char* name_;
-};
-
-TEST(Feltd, TheTokenCanComeFromTheEnvironmentAndTheFlagWins) {
-  const auto token_needed = [](FeltdProcess& server, const std::string& token) {
-    Client client;
-    client.connect("127.0.0.1", server.port());
-    expect_error([&] { client.hello("intruder"); }, v1::ERROR_CODE_UNAUTHORIZED);
-    EXPECT_EQ(client.hello("friend", token).protocol_version(), 1u);
-  };
-  ScopedEnvironment environment("FELT_TOKEN", "from-the-environment");
-  FeltdProcess from_environment(default_args());
-  token_needed(from_environment, "from-the-environment");
-  auto args = default_args();
-  args.insert(args.end(), {"--token", "from-the-flag"});
-  FeltdProcess from_flag(args);
-  {
-    Client client;
-    client.connect("127.0.0.1", from_flag.port());
-    expect_error([&] { client.hello("guesser", "from-the-environment"); },
-                 v1::ERROR_CODE_UNAUTHORIZED);
-  }
-  token_needed(from_flag, "from-the-flag");
-}
-
-/// Whether a TCP connection to `address`:`port` (IPv4, network order) is accepted.
-bool accepts(in_addr address, std::uint16_t port) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in to{};
-  to.sin_family = AF_INET;
-  to.sin_port = htons(port);
-  to.sin_addr = address;
-  const bool connected = ::connect(fd, reinterpret_cast<sockaddr*>(&to), sizeof to) == 0;
-  ::close(fd);
-  return connected;
-}
-
-TEST(Feltd, ListensOnLoopbackOnlyByDefault) {
-  constexpr std::uint16_t kDefaultPort = 7450;
-  std::optional<FeltdProcess> server;
-  try {
-    server.emplace(default_args(), true);
-  } catch (const std::runtime_error& e) {
-    // a server that did not come up because another holds the port says nothing of the default
-    in_addr loopback{htonl(INADDR_LOOPBACK)};
-    if (std::string(e.what()).starts_with("feltd exited") && accepts(loopback, kDefaultPort)) {
-      GTEST_SKIP() << "port 7450 is in use";
-    }
-    FAIL() << e.what();  // listening elsewhere than on 127.0.0.1 is one of these
-  }
-  EXPECT_EQ(server->first_line(), "listening on 127.0.0.1:7450");
-  Client local;
-  local.connect("127.0.0.1", kDefaultPort);
-  EXPECT_EQ(local.hello("local").protocol_version(), 1u);
-  // the machine's other IPv4 addresses (a container has its own) do not reach it
-  ifaddrs* interfaces = nullptr;
-  ASSERT_EQ(getifaddrs(&interfaces), 0);
-  for (const ifaddrs* i = interfaces; i; i = i->ifa_next) {
-    if (!i->ifa_addr || i->ifa_addr->sa_family != AF_INET || (i->ifa_flags & IFF_LOOPBACK) ||
-        !(i->ifa_flags & IFF_UP)) {
-      continue;
-    }
-    const in_addr address = reinterpret_cast<const sockaddr_in*>(i->ifa_addr)->sin_addr;
-    EXPECT_FALSE(accepts(address, kDefaultPort)) << inet_ntoa(address);
-  }
-  freeifaddrs(interfaces);
 }
 
 }  // namespace
