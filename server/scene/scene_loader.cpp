@@ -11,6 +11,7 @@
 
 #include "core/cloth/cloth_grid.hpp"
 #include "core/cloth/mesh_cloth.hpp"
+#include "core/integrate/xpbd_integrator.hpp"
 #include "scene/haptics_reader.hpp"
 #include "scene/obj_reader.hpp"
 #include "scene/object_reader.hpp"
@@ -235,6 +236,36 @@ ClothModel read_mesh_model(const ObjectReader& body, const SceneLoadOptions& opt
   return make_mesh_cloth(*triangles, total_mass);
 }
 
+/// A cloth's "integrator": a name, or an object with the name and the integrator's parameters
+/// (only xpbd has any: "substeps").
+std::unique_ptr<Integrator> read_cloth_integrator(const ObjectReader& body) {
+  std::string name = "symplectic_euler";
+  std::string name_path = body.path_of("integrator");
+  std::uint32_t substeps = XpbdIntegrator::kDefaultSubsteps;
+  if (body.has("integrator") && body.at("integrator").is_object()) {
+    const ObjectReader integrator(body.at("integrator"), body.path_of("integrator"),
+                                  {"name", "substeps"});
+    name = integrator.string("name", name);
+    name_path = integrator.path_of("name");
+    substeps = integrator.count("substeps", substeps, 1, XpbdIntegrator::kMaxSubsteps);
+    if (integrator.has("substeps") && name != "xpbd") {
+      fail(integrator.path_of("substeps"), "applies to xpbd only");
+    }
+  } else {
+    name = body.string("integrator", name);
+  }
+  if (name == "xpbd") return std::make_unique<XpbdIntegrator>(static_cast<int>(substeps));
+  auto integrator = make_integrator(name);
+  if (!integrator) {
+    std::string known;
+    for (std::string_view known_name : integrator_names()) {
+      known += (known.empty() ? "" : ", ") + std::string(known_name);
+    }
+    fail(name_path, "unknown integrator \"" + name + "\" (known: " + known + ")");
+  }
+  return integrator;
+}
+
 ClothBody read_cloth(const ObjectReader& body, std::size_t index, const SceneLoadOptions& options,
                      std::size_t& particles_left) {
   if (body.has("grid") == body.has("mesh")) {
@@ -253,18 +284,8 @@ ClothBody read_cloth(const ObjectReader& body, std::size_t index, const SceneLoa
     model = std::make_shared<const ClothModel>(
         read_mesh_model(body, options, total_mass, particles_left));
   }
-  const std::string integrator_name = body.string("integrator", "symplectic_euler");
-  auto integrator = make_integrator(integrator_name);
-  if (!integrator) {
-    std::string known;
-    for (std::string_view name : integrator_names()) {
-      known += (known.empty() ? "" : ", ") + std::string(name);
-    }
-    fail(body.path_of("integrator"),
-         "unknown integrator \"" + integrator_name + "\" (known: " + known + ")");
-  }
   ClothBody cloth(body.name("name", "cloth" + std::to_string(index)), model, read_springs(body),
-                  std::move(integrator));
+                  read_cloth_integrator(body));
   for (std::uint32_t p : read_pins(body, grid ? &*grid : nullptr, model->particle_count())) {
     cloth.pin(p);
   }

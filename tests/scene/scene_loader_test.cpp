@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/integrate/xpbd_integrator.hpp"
+
 namespace felt {
 namespace {
 
@@ -130,6 +132,36 @@ TEST(SceneLoader, UnknownIntegratorListsTheKnownOnes) {
   const std::string error = error_of(doc);
   EXPECT_NE(error.find("bodies[0].integrator: unknown integrator \"magic\""), std::string::npos);
   EXPECT_NE(error.find("symplectic_euler"), std::string::npos);
+}
+
+TEST(SceneLoader, ReadsXpbdWithItsSubsteps) {
+  json doc = minimal_cloth();
+  doc["bodies"][0]["integrator"] = {{"name", "xpbd"}, {"substeps", 12}};
+  auto scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  const auto* xpbd = dynamic_cast<const XpbdIntegrator*>(&scene->world.cloths()[0].integrator());
+  ASSERT_NE(xpbd, nullptr);
+  EXPECT_EQ(xpbd->substeps(), 12);
+
+  doc["bodies"][0]["integrator"] = "xpbd";
+  scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  EXPECT_EQ(dynamic_cast<const XpbdIntegrator&>(scene->world.cloths()[0].integrator()).substeps(),
+            XpbdIntegrator::kDefaultSubsteps);
+
+  doc["bodies"][0]["integrator"] = {{"name", "xpbd"}, {"substeps", 0}};
+  EXPECT_EQ(error_of(doc), "bodies[0].integrator.substeps: must be between 1 and 1000");
+  doc["bodies"][0]["integrator"] = {{"name", "rk4"}, {"substeps", 4}};
+  EXPECT_EQ(error_of(doc), "bodies[0].integrator.substeps: applies to xpbd only");
+  doc["bodies"][0]["integrator"] = {{"name", "xpbd"}, {"iterations", 4}};
+  EXPECT_EQ(error_of(doc), "bodies[0].integrator.iterations: unknown key");
+  doc["bodies"][0]["integrator"] = {{"name", "magic"}};
+  EXPECT_NE(error_of(doc).find("bodies[0].integrator.name: unknown integrator \"magic\""),
+            std::string::npos);
+  doc["bodies"][0]["integrator"] = {{"name", "rk4"}};
+  scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  EXPECT_EQ(scene->world.cloths()[0].integrator().name(), "rk4");
 }
 
 TEST(SceneLoader, RejectsTextThatIsNotJson) {

@@ -86,12 +86,24 @@ void ClothBody::clear_external_forces() {
 
 void ClothBody::compute_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real t,
                                std::span<Vec3> f) const {
+  compute_forces(x, v, t, f, true);
+}
+
+void ClothBody::compute_forces_besides_constraints(std::span<const Vec3> x, std::span<const Vec3> v,
+                                                   Real t, std::span<Vec3> f) const {
+  compute_forces(x, v, t, f, false);
+}
+
+void ClothBody::compute_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real t,
+                               std::span<Vec3> f, bool with_springs) const {
   const ClothModel& model = *model_;
   for (std::size_t p = 0; p < x.size(); ++p) {
     f[p] = model.mass[p] * gravity_ - params_.drag * v[p] + external_force_[p];
   }
   // damped linear spring, thesis 1 §2: f_i = −[k_s(|l|−r) + k_d (v_i−v_j)·l̂] l̂
-  for (const Spring& s : model.springs) {
+  const std::span<const Spring> springs =
+      with_springs ? std::span<const Spring>(model.springs) : std::span<const Spring>();
+  for (const Spring& s : springs) {
     const SpringParams& sp = params_.spring(s.kind);
     if (!sp.enabled) continue;
     const Vec3 d = x[s.i] - x[s.j];
@@ -166,6 +178,15 @@ bool ClothBody::linear_force_pairs(std::vector<LinearPair>& pairs) const {
     if (s.kind == SpringKind::kStructural) pairs.push_back({s.i, s.j, sp.stiffness, sp.damping});
   }
   return !pairs.empty();
+}
+
+bool ClothBody::distance_constraints(std::vector<DistanceConstraint>& constraints) const {
+  constraints.clear();
+  for (const Spring& s : model_->springs) {
+    const SpringParams& sp = params_.spring(s.kind);
+    if (sp.enabled) constraints.push_back({s.i, s.j, s.rest_length, sp.stiffness, sp.damping});
+  }
+  return !constraints.empty();
 }
 
 Real ClothBody::kinetic_energy() const {

@@ -119,8 +119,14 @@ class ClothBody final : public DynamicSystem {
   /// The enabled structural springs' linear part −k_s l and their damping, taken isotropic
   /// (Eberhardt et al. 2000, thesis 1 §4.4); shear and bend stay explicit.
   bool linear_force_pairs(std::vector<LinearPair>& pairs) const override;
+  /// Every enabled spring, with its kind's stiffness and damping.
+  bool distance_constraints(std::vector<DistanceConstraint>& constraints) const override;
+  void compute_forces_besides_constraints(std::span<const Vec3> x, std::span<const Vec3> v, Real t,
+                                          std::span<Vec3> f) const override;
 
  private:
+  void compute_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real t, std::span<Vec3> f,
+                      bool with_springs) const;
   void add_wind_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real t,
                        std::span<Vec3> f) const;
 

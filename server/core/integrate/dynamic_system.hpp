@@ -3,6 +3,7 @@
 #include <span>
 #include <vector>
 
+#include "core/integrate/distance_constraint.hpp"
 #include "core/integrate/force_jacobian.hpp"
 #include "core/integrate/linear_pair.hpp"
 #include "core/math/types.hpp"
@@ -35,6 +36,19 @@ class DynamicSystem {
   virtual bool linear_force_pairs(std::vector<LinearPair>& pairs) const {
     pairs.clear();
     return false;
+  }
+
+  /// Replaces `constraints` with the springs a position-based integrator (XPBD) enforces as
+  /// compliant distance constraints instead of as forces. False when the system has none.
+  virtual bool distance_constraints(std::vector<DistanceConstraint>& constraints) const {
+    constraints.clear();
+    return false;
+  }
+
+  /// compute_forces without the forces of the springs distance_constraints returns.
+  virtual void compute_forces_besides_constraints(std::span<const Vec3> x, std::span<const Vec3> v,
+                                                  Real t, std::span<Vec3> f) const {
+    compute_forces(x, v, t, f);
   }
 };
 

@@ -8,6 +8,7 @@
 #include "core/integrate/implicit_euler.hpp"
 #include "core/integrate/runge_kutta_integrators.hpp"
 #include "core/integrate/verlet_integrators.hpp"
+#include "core/integrate/xpbd_integrator.hpp"
 
 namespace felt {
 namespace {
@@ -36,6 +37,7 @@ constexpr std::array kIntegrators{
     Entry{"imex", &make_one<ImexIntegrator>, IntegratorNeeds::kLinearPairs},
     Entry{"desbrun", &make_one<DesbrunIntegrator>, IntegratorNeeds::kLinearPairs},
     Entry{"kang", &make_one<KangIntegrator>, IntegratorNeeds::kLinearPairs},
+    Entry{"xpbd", &make_one<XpbdIntegrator>, IntegratorNeeds::kDistanceConstraints},
 };
 
 }  // namespace

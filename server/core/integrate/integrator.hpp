@@ -36,9 +36,10 @@ std::vector<std::string_view> integrator_names();
 
 /// What an integrator asks of a DynamicSystem beyond its masses and forces.
 enum class IntegratorNeeds : std::uint8_t {
-  kForces,       ///< nothing more: the explicit and symplectic schemes
-  kJacobian,     ///< compute_jacobian (implicit Euler)
-  kLinearPairs,  ///< linear_force_pairs for its implicit part (IMEX, Desbrun, Kang)
+  kForces,               ///< nothing more: the explicit and symplectic schemes
+  kJacobian,             ///< compute_jacobian (implicit Euler)
+  kLinearPairs,          ///< linear_force_pairs for its implicit part (IMEX, Desbrun, Kang)
+  kDistanceConstraints,  ///< distance_constraints for its springs (XPBD)
 };
 
 /// What the integrator called `name` needs, or nothing for an unknown name.

@@ -104,6 +104,9 @@ std::optional<std::string> solid_integrator_refusal(SolidModel model, std::strin
            " needs a force Jacobian, which the solid models do not give (imex, desbrun and kang "
            "take a mass-spring solid's edges implicitly)";
   }
+  if (*needs == IntegratorNeeds::kDistanceConstraints) {
+    return std::string(name) + " enforces a cloth's springs as constraints; solids have none";
+  }
   if (*needs == IntegratorNeeds::kLinearPairs && model != SolidModel::kMassSpring) {
     return std::string(name) +
            " takes springs implicitly and corotated_fem has none; the explicit integrators apply";

@@ -73,6 +73,22 @@ inline World expect_top_row_pins_hold(std::string_view integrator, bool every_st
   return world;
 }
 
+/// Kinetic, elastic and gravitational energy, the last measured from the positions `start`, J.
+inline Real total_energy(const ClothBody& body, const std::vector<Vec3>& start) {
+  Real energy = body.kinetic_energy() + body.elastic_energy();
+  for (std::size_t i = 0; i < start.size(); ++i) {
+    energy -= body.model().mass[i] * body.gravity().dot(body.state().x[i] - start[i]);
+  }
+  return energy;
+}
+
+inline bool all_finite(const ParticleState& state) {
+  for (std::size_t p = 0; p < state.size(); ++p) {
+    if (!state.x[p].allFinite() || !state.v[p].allFinite()) return false;
+  }
+  return true;
+}
+
 inline void expect_vec_near(const Vec3& got, const Vec3& want, Real tolerance) {
   EXPECT_NEAR(got.x(), want.x(), tolerance);
   EXPECT_NEAR(got.y(), want.y(), tolerance);

@@ -71,21 +71,6 @@ Vec3 angular_momentum(const ClothBody& body) {
 }
 
 /// Kinetic, elastic and gravitational energy (the potential 0 where the body is at t = 0).
-Real total_energy(const ClothBody& body, const std::vector<Vec3>& start) {
-  Real energy = body.kinetic_energy() + body.elastic_energy();
-  for (std::size_t i = 0; i < start.size(); ++i) {
-    energy -= body.model().mass[i] * body.gravity().dot(body.state().x[i] - start[i]);
-  }
-  return energy;
-}
-
-bool all_finite(const ParticleState& state) {
-  for (std::size_t p = 0; p < state.size(); ++p) {
-    if (!state.x[p].allFinite() || !state.v[p].allFinite()) return false;
-  }
-  return true;
-}
-
 TEST(ApproximateImplicit, AreNamedAsScenesSelectThem) {
   for (std::string_view name : kSchemes) {
     auto integrator = make_integrator(name);
