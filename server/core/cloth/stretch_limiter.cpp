@@ -44,9 +44,10 @@ void project_attachments(std::span<const Attachment> attachments, Real max_facto
 
 /// Gauss–Seidel over the springs until a sweep finds none beyond its bound by more than half
 /// the slack, or `max_sweeps`: the other half is for the corrections later in that sweep, which
-/// may lengthen a spring already checked. Each spring out of bounds is set to its bound, its ends moving in proportion to
-/// their inverse masses (about the midpoint for equal masses; the free end the whole way when
-/// the other is pinned), which keeps their centre of mass. Returns the sweeps taken.
+/// may lengthen a spring already checked. Each spring out of bounds is set to its bound, its ends
+/// moving in proportion to their inverse masses (about the midpoint for equal masses; the free end
+/// the whole way when the other is pinned), which keeps their centre of mass. Returns the sweeps
+/// taken.
 int project_springs(const ClothModel& model, std::span<const Real> inv_mass, const Bounds& b,
                     int max_sweeps, ParticleState& state) {
   int sweep = 0;
