@@ -479,11 +479,7 @@ TEST_F(FeltdTest, ShutdownCancelsWhatScenesStillHadToDoThenSaysGoodbye) {
     ADD_FAILURE() << "the connection was not closed";
   } catch (const ClientError&) {
   }
-  ASSERT_EQ(received.size(), 3u) << [&] {
-    std::string all;
-    for (const v1::ServerMessage& message : received) all += message.ShortDebugString() + "\n";
-    return all;
-  }();
+  ASSERT_EQ(received.size(), 3u) << describe(received);
   for (int i = 0; i < 2; ++i) {
     EXPECT_EQ(received[i].request_id(), ids[i]);
     EXPECT_EQ(received[i].error().code(), v1::ERROR_CODE_CANCELLED);

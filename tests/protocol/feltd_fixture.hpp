@@ -91,4 +91,11 @@ inline std::string small_cloth_json(double x = 2.0) {
          std::to_string(x) + R"(, 1.5, 0]}, "pin": "top_corners"})";
 }
 
+/// The messages as text, one a line: what a test names when it got other messages than it expected.
+inline std::string describe(const std::vector<v1::ServerMessage>& messages) {
+  std::string text;
+  for (const v1::ServerMessage& message : messages) text += message.ShortDebugString() + "\n";
+  return text;
+}
+
 }  // namespace felt::test
