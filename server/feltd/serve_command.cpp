@@ -9,6 +9,7 @@
 #include <thread>
 
 #include <boost/asio.hpp>
+#include <nlohmann/json.hpp>
 
 #include "feltd/scene_options.hpp"
 #include "net/endpoint_text.hpp"
