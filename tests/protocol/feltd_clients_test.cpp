@@ -472,13 +472,13 @@ TEST_F(FeltdTest, ShutdownCancelsWhatScenesStillHadToDoThenSaysGoodbye) {
   auto idle = greeted("idle");
   idle->leave_scene();
   ASSERT_EQ(server_->stop(SIGTERM, 5s), 0);
-
   std::vector<v1::ServerMessage> received;
   try {
     while (auto message = busy->receive(5s)) received.push_back(*message);
     ADD_FAILURE() << "the connection was not closed";
   } catch (const ClientError&) {
   }
+  std::erase_if(received, tells_of_a_rescue);  // the big cloth may need substeps now and then
   ASSERT_EQ(received.size(), 3u) << describe(received);
   for (int i = 0; i < 2; ++i) {
     EXPECT_EQ(received[i].request_id(), ids[i]);
