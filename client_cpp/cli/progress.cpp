@@ -52,11 +52,13 @@ Spinner::~Spinner() {
 void Spinner::spin() {
   const auto start = std::chrono::steady_clock::now();
   std::unique_lock lock(mutex_);
-  for (int turn = 0; !stopping_; ++turn) {
+  // Drawn at least once, even when the request is answered before this thread first runs: the
+  // label tells what was waited for.
+  for (int turn = 0;; ++turn) {
     const std::chrono::duration<double> waited = std::chrono::steady_clock::now() - start;
     std::fprintf(stderr, "\r%s %c %.1f s\033[K", label_.c_str(), "|/-\\"[turn % 4], waited.count());
     std::fflush(stderr);
-    stop_.wait_for(lock, std::chrono::milliseconds(100), [this] { return stopping_; });
+    if (stop_.wait_for(lock, std::chrono::milliseconds(100), [this] { return stopping_; })) return;
   }
 }
 
