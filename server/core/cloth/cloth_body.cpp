@@ -197,6 +197,14 @@ Real ClothBody::kinetic_energy() const {
   return energy;
 }
 
+Real ClothBody::gravitational_energy() const {
+  Real energy = 0;
+  for (std::size_t p = 0; p < state_.size(); ++p) {
+    energy -= model_->mass[p] * gravity_.dot(state_.x[p]);
+  }
+  return energy;
+}
+
 Real ClothBody::elastic_energy() const {
   Real energy = 0;
   for (const Spring& s : model_->springs) {

@@ -105,6 +105,8 @@ class ClothBody final : public DynamicSystem {
   Real kinetic_energy() const;
   /// Σ ½ k (|l| − r)² over the enabled springs and ½ k |target − x|² over the anchors, J.
   Real elastic_energy() const;
+  /// −Σ m g·x over all particles, J: zero at the origin, so only its changes mean anything.
+  Real gravitational_energy() const;
   const std::vector<Vec3>& external_forces() const { return external_force_; }
   const Vec3& gravity() const { return gravity_; }
   /// Largest relative elongation |l|/r − 1 over the structural and shear springs.

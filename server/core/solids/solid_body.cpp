@@ -330,6 +330,12 @@ Real SolidBody::kinetic_energy() const {
   return 0.5 * material_.node_mass * sum;
 }
 
+Real SolidBody::gravitational_energy(const Vec3& gravity) const {
+  Real sum = 0;
+  for (const Vec3& x : x_) sum -= gravity.dot(x);
+  return material_.node_mass * sum;
+}
+
 Real SolidBody::elastic_energy() const {
   return std::visit(
       [&](const auto& model) -> Real {

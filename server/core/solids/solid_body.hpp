@@ -185,6 +185,8 @@ class SolidBody {
 
   Real kinetic_energy() const;
   Real elastic_energy() const;
+  /// −Σ m g·x over the nodes, J: zero at the origin, so only its changes mean anything.
+  Real gravitational_energy(const Vec3& gravity) const;
   Real volume() const { return total_volume(x_, rest_.tets); }
   Real rest_volume() const { return rest_volume_; }
 

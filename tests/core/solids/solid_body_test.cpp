@@ -128,6 +128,17 @@ TEST(SolidBody, ShapeMatchingHasNoStepLimit) {
   EXPECT_EQ(body.stable_time_step(), std::numeric_limits<Real>::infinity());
 }
 
+// Lifting every node by d raises −Σ m g·x by M |g| d, M the body's whole mass.
+TEST(SolidBody, GravitationalEnergyRisesByMassTimesGravityTimesHeight) {
+  SolidBody body("cube", box({1, 1, 1}, 1), test::mass_spring(0.05, 60, 20, 2));
+  const Real before = body.gravitational_energy(kGravity);
+  const Real d = 0.25;
+  for (Vec3& x : body.positions()) x.y() += d;
+  const Real mass = body.material().node_mass * static_cast<Real>(body.node_count());
+  EXPECT_NEAR(body.gravitational_energy(kGravity) - before, mass * 9.81 * d, 1e-12);
+  EXPECT_NEAR(body.gravitational_energy(Vec3::Zero()), 0, 1e-15);
+}
+
 // Position Verlet with the Taylor start and the uneven-grid term is exact for a constant
 // acceleration at any sequence of step lengths: free fall x = x₀ + v₀ t + ½ g t².
 TEST(SolidBody, FreeFallIsExactAtVaryingSteps) {
