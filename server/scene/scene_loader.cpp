@@ -427,8 +427,20 @@ std::expected<Collider, SceneError> load_collider(const json& entry, const std::
 }
 
 std::expected<json, SceneError> parse_json(std::string_view text, const std::string& source) {
+  // Each nested container costs about 80 bytes for its 2 bytes of text, so a deeply nested
+  // document took ~30 times its size in memory; no scene needs more than a handful of levels.
+  struct TooDeep {};
+  const auto limit_depth = [](int depth, json::parse_event_t event, json&) {
+    const bool opens =
+        event == json::parse_event_t::object_start || event == json::parse_event_t::array_start;
+    if (opens && depth >= kMaxJsonDepth) throw TooDeep{};
+    return true;
+  };
   try {
-    return json::parse(text);
+    return json::parse(text, limit_depth);
+  } catch (const TooDeep&) {
+    return std::unexpected(SceneError{"", source + " nests arrays and objects deeper than " +
+                                              std::to_string(kMaxJsonDepth) + " levels"});
   } catch (const json::exception& e) {
     // parse errors, and numbers no double can hold (1e400), among others
     return std::unexpected(SceneError{"", source + " is not valid JSON: " + e.what()});

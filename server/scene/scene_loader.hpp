@@ -44,6 +44,9 @@ std::expected<SceneBody, SceneError> load_body(const nlohmann::json& entry, cons
 std::expected<Collider, SceneError> load_collider(const nlohmann::json& entry,
                                                   const std::string& path);
 
+/// Arrays and objects nested deeper than this are refused.
+inline constexpr int kMaxJsonDepth = 32;
+
 /// Parses JSON text; `source` names it in the error.
 std::expected<nlohmann::json, SceneError> parse_json(std::string_view text,
                                                      const std::string& source);

@@ -177,6 +177,21 @@ TEST(SceneLoader, NumbersNoDoubleHoldsAreAnErrorNotACrash) {
   EXPECT_NE(scene.error().what().find("not valid JSON"), std::string::npos);
 }
 
+TEST(SceneLoader, NestingIsLimitedBeforeItCostsMemory) {
+  const auto nested = [](int levels) {
+    return std::string(static_cast<std::size_t>(levels), '[') +
+           std::string(static_cast<std::size_t>(levels), ']');
+  };
+  EXPECT_TRUE(parse_json(nested(kMaxJsonDepth), "the scene"));
+  const auto deeper = parse_json(nested(kMaxJsonDepth + 1), "the scene");
+  ASSERT_FALSE(deeper);
+  EXPECT_EQ(deeper.error().what(), "the scene nests arrays and objects deeper than 32 levels");
+  // a megabyte of nesting is refused at its 33rd level, before the rest is read into memory
+  const auto scene = load_scene_text(nested(500'000));
+  ASSERT_FALSE(scene);
+  EXPECT_NE(scene.error().what().find("deeper than 32 levels"), std::string::npos);
+}
+
 TEST(SceneLoader, ParticleLimitIsCheckedBeforeBuilding) {
   json doc = minimal_cloth();
   doc["bodies"].push_back(doc["bodies"][0]);  // two bodies of 12 particles
