@@ -5,9 +5,11 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
+#include "core/collision/sphere_sweep.hpp"
 #include "core/collision/triangle_query.hpp"
 #include "core/haptics/surface_motion.hpp"
 #include "core/math/types.hpp"
@@ -25,6 +27,13 @@ struct HapticBody {
   const TriangleQuery* query = nullptr;
   /// how far its vertices move from `from` to `to`, and along its chain of snapshot pairs
   SurfaceMotion motion;
+
+  /// How far a vertex moves between the snapshots: motion.max_displacement, 0 when it does not
+  /// say.
+  Real displacement() const;
+  /// Triangle `triangle` at `alpha` between the snapshots (HapticSurface::vertex's formula),
+  /// unless it is not there (a bad index, a non-finite corner).
+  std::optional<TriangleCorners> triangle_at(std::uint32_t triangle, Real alpha) const;
 };
 
 struct HapticSurface {
