@@ -1,9 +1,15 @@
 #include "net/frame_stream.hpp"
 
 #include <algorithm>
+#include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "core/cloth/vertex_strain.hpp"
+#include "felt/v1/envelope.pb.h"
+#include "net/shared_frame_bodies.hpp"
 #include "net/wire_convert.hpp"
+#include "wire/frame_codec.hpp"
 
 namespace felt::net {
 namespace {
@@ -12,6 +18,8 @@ namespace {
 // fit the same bounds (and can be deltas) while the body moves
 constexpr float kBoundsMargin = 0.25f;
 constexpr float kMinBoundsMargin = 0.01f;  // m
+// protobuf's wire type of a message field: a field tag is (number << 3) | wire type
+constexpr std::uint64_t kLengthDelimited = 2;
 
 void to_floats(const std::vector<Vec3>& vectors, std::vector<float>& out) {
   static_assert(sizeof(Vec3) == 3 * sizeof(Real), "a vector buffer is its coordinates in a row");
@@ -45,28 +53,74 @@ void put_values(const std::vector<std::uint16_t>& q, const std::vector<std::uint
   }
 }
 
-void put_quantized(const BodySnapshot& body, bool with_normals, const FrameStream::BodyRecord* base,
-                   FrameStream::BodyRecord& record, felt::v1::BodyFrame& out) {
-  // one buffer per thread that encodes, kept: a frame then allocates nothing for it
-  thread_local std::vector<float> scratch;
-  to_floats(body.positions, scratch);
-  // a delta keeps its base's bounds; a body that moved out of them gets a key frame
-  const bool delta =
-      base && base->positions.size() == scratch.size() && wire::fits(scratch, base->bounds);
+/// `body`'s positions as floats, in a buffer per encoding thread (kept: a frame then allocates
+/// nothing for it).
+const std::vector<float>& positions_as_floats(const BodySnapshot& body) {
+  thread_local std::vector<float> floats;
+  to_floats(body.positions, floats);
+  return floats;
+}
+
+/// `body` as 16-bit values: as deltas against `base` (whose bounds `positions`, the body's
+/// positions as floats, fit) or, without one, as values within new bounds.
+void put_quantized(const BodySnapshot& body, const std::vector<float>& positions, bool with_normals,
+                   const FrameStream::BodyRecord* base, FrameStream::BodyRecord& record,
+                   felt::v1::BodyFrame& out) {
+  // a delta keeps its base's bounds
   record.bounds =
-      delta ? base->bounds : wire::bounds_around(scratch, kBoundsMargin, kMinBoundsMargin);
-  wire::quantize(scratch, record.bounds, record.positions);
-  felt::v1::QuantizedVectors& positions = *out.mutable_quantized_positions();
-  put_bounds(record.bounds, positions);
-  put_values(record.positions, delta ? &base->positions : nullptr, positions);
+      base ? base->bounds : wire::bounds_around(positions, kBoundsMargin, kMinBoundsMargin);
+  wire::quantize(positions, record.bounds, record.positions);
+  felt::v1::QuantizedVectors& quantized = *out.mutable_quantized_positions();
+  put_bounds(record.bounds, quantized);
+  put_values(record.positions, base ? &base->positions : nullptr, quantized);
   if (with_normals) {
-    to_floats(body.normals, scratch);
+    thread_local std::vector<float> normals_floats;
+    to_floats(body.normals, normals_floats);
     const wire::QuantizationBounds unit{{-1, -1, -1}, {1, 1, 1}};
-    wire::quantize(scratch, unit, record.normals);
+    wire::quantize(normals_floats, unit, record.normals);
     felt::v1::QuantizedVectors& normals = *out.mutable_quantized_normals();
     put_bounds(unit, normals);
-    put_values(record.normals, delta ? &base->normals : nullptr, normals);
+    put_values(record.normals, base ? &base->normals : nullptr, normals);
   }
+}
+
+/// `body` in `options`' encoding, with its triangles when `triangles`, as the one body of
+/// `frame`; its 16-bit values go to `record`, as deltas against `base` when given (whose bounds
+/// `positions` fit).
+void put_body(const BodySnapshot& body, const std::vector<float>* positions,
+              const FrameOptions& options, bool triangles, const FrameStream::BodyRecord* base,
+              FrameStream::BodyRecord& record, felt::v1::Frame& frame) {
+  felt::v1::BodyFrame& out = *frame.add_bodies();
+  out.set_body_id(body.body_id);
+  out.set_name(body.name);
+  out.set_vertex_count(static_cast<std::uint32_t>(body.positions.size()));
+  if (options.quantized) {
+    put_quantized(body, positions ? *positions : positions_as_floats(body), options.normals, base,
+                  record, out);
+    record.body_id = body.body_id;
+  } else {
+    put_floats(body.positions, *out.mutable_positions());
+    if (options.normals) put_floats(body.normals, *out.mutable_normals());
+  }
+  if (options.scalars && body.cloth) {
+    thread_local std::vector<float> strain;
+    vertex_strain(*body.cloth, body.positions, strain);
+    out.mutable_scalars()->Assign(strain.begin(), strain.end());
+  }
+  if (triangles) {
+    auto& corners = *out.mutable_triangles();
+    corners.Reserve(static_cast<int>(3 * body.triangles().size()));
+    for (const Triangle& t : body.triangles()) {
+      for (std::uint32_t corner : t) corners.AddAlreadyReserved(corner);
+    }
+  }
+}
+
+/// The bytes `value` takes as a base-128 varint.
+std::size_t varint_size(std::uint64_t value) {
+  std::size_t bytes = 1;
+  for (; value >= 0x80; value >>= 7) ++bytes;
+  return bytes;
 }
 
 bool wanted(const FrameOptions& options, BodyId id) {
@@ -132,47 +186,69 @@ FrameStream::Plan FrameStream::plan(std::shared_ptr<const SceneSnapshot> snapsho
   return plan;
 }
 
-void FrameStream::encode(const Plan& plan, felt::v1::Frame& frame, FrameRecord& record) {
+void FrameStream::encode(const Plan& plan, SharedFrameBodies& shared, std::string& out,
+                         FrameRecord& record) {
   const SceneSnapshot& snapshot = *plan.snapshot;
   const FrameOptions& options = plan.options;
   record = {};
   record.sequence = plan.sequence;
-  frame.set_scene_id(plan.scene);
-  frame.set_step(snapshot.step);
-  frame.set_sim_time(snapshot.sim_time);
-  frame.set_skipped(plan.skipped);
-  frame.set_sequence(plan.sequence);
-  if (plan.base) frame.set_base_sequence(plan.base->sequence);
-  put_proxies(plan.proxies, frame);
-  for (const BodySnapshot& body : snapshot.bodies) {
+  // the frame's fields in their numbers' order, as protobuf writes them: those before the bodies
+  // (1-4), the bodies (5), those after them (6-8)
+  felt::v1::Frame before;
+  before.set_scene_id(plan.scene);
+  before.set_step(snapshot.step);
+  before.set_sim_time(snapshot.sim_time);
+  before.set_skipped(plan.skipped);
+  felt::v1::Frame after;
+  after.set_sequence(plan.sequence);
+  if (plan.base) after.set_base_sequence(plan.base->sequence);
+  put_proxies(plan.proxies, after);
+  // the bodies' bytes, shared or this client's own, written out once below
+  std::vector<std::shared_ptr<const EncodedBody>> bodies;
+  for (std::size_t i = 0; i < snapshot.bodies.size(); ++i) {
+    const BodySnapshot& body = snapshot.bodies[i];
     if (!wanted(options, body.body_id)) continue;
-    felt::v1::BodyFrame* out = frame.add_bodies();
-    out->set_body_id(body.body_id);
-    out->set_name(body.name);
-    out->set_vertex_count(static_cast<std::uint32_t>(body.positions.size()));
-    if (options.quantized) {
-      BodyRecord& quantized = record.bodies.emplace_back();
-      put_quantized(body, options.normals, plan.base ? plan.base->find(body.body_id) : nullptr,
-                    quantized, *out);
-      quantized.body_id = body.body_id;
-    } else {
-      put_floats(body.positions, *out->mutable_positions());
-      if (options.normals) put_floats(body.normals, *out->mutable_normals());
-    }
-    if (options.scalars && body.cloth) {
-      thread_local std::vector<float> strain;
-      vertex_strain(*body.cloth, body.positions, strain);
-      out->mutable_scalars()->Assign(strain.begin(), strain.end());
-    }
-    if (std::find(plan.with_triangles.begin(), plan.with_triangles.end(), body.body_id) !=
-        plan.with_triangles.end()) {
-      auto& triangles = *out->mutable_triangles();
-      triangles.Reserve(static_cast<int>(3 * body.triangles().size()));
-      for (const Triangle& t : body.triangles()) {
-        for (std::uint32_t corner : t) triangles.AddAlreadyReserved(corner);
+    const bool triangles = std::find(plan.with_triangles.begin(), plan.with_triangles.end(),
+                                     body.body_id) != plan.with_triangles.end();
+    const BodyRecord* base =
+        options.quantized && plan.base ? plan.base->find(body.body_id) : nullptr;
+    if (base) {
+      // a delta is this client's own; a body that moved out of its base's bounds, or has other
+      // vertices now, gets a key frame, which is everyone's
+      const std::vector<float>& positions = positions_as_floats(body);
+      if (base->positions.size() == positions.size() && wire::fits(positions, base->bounds)) {
+        auto own = std::make_shared<EncodedBody>();
+        felt::v1::Frame one;
+        put_body(body, &positions, options, triangles, base, record.bodies.emplace_back(), one);
+        own->bytes = one.SerializeAsString();
+        bodies.push_back(std::move(own));
+        continue;
       }
     }
+    bodies.push_back(shared.get(
+        plan.snapshot, i, {options.quantized, options.normals, options.scalars, triangles}, [&] {
+          EncodedBody fresh;
+          felt::v1::Frame one;
+          put_body(body, nullptr, options, triangles, nullptr, fresh.record, one);
+          fresh.bytes = one.SerializeAsString();
+          return fresh;
+        }));
+    if (options.quantized) record.bodies.push_back(bodies.back()->record);
   }
+  // a ServerMessage whose one field is the frame, behind its length: written in one go
+  const std::string head = before.SerializeAsString();
+  const std::string tail = after.SerializeAsString();
+  std::size_t frame_size = head.size() + tail.size();
+  for (const auto& body : bodies) frame_size += body->bytes.size();
+  const std::uint64_t tag = (felt::v1::ServerMessage::kFrameFieldNumber << 3) | kLengthDelimited;
+  const std::size_t message_size = varint_size(tag) + varint_size(frame_size) + frame_size;
+  out.reserve(out.size() + varint_size(message_size) + message_size);
+  wire::append_varint(out, message_size);
+  wire::append_varint(out, tag);
+  wire::append_varint(out, frame_size);
+  out += head;
+  for (const auto& body : bodies) out += body->bytes;
+  out += tail;
 }
 
 void FrameStream::put_proxies(const std::vector<ProxyView>& proxies, felt::v1::Frame& frame) {
@@ -195,8 +271,16 @@ void FrameStream::put_proxies(const std::vector<ProxyView>& proxies, felt::v1::F
 void FrameStream::build(std::shared_ptr<const SceneSnapshot> snapshot, SceneId scene,
                         std::uint64_t skipped, felt::v1::Frame& frame) {
   const Plan planned = plan(std::move(snapshot), scene, skipped);
+  SharedFrameBodies shared;
+  std::string bytes;
   FrameRecord record;
-  encode(planned, frame, record);
+  encode(planned, shared, bytes, record);
+  const std::optional<wire::FrameView> message = wire::first_frame(bytes);
+  felt::v1::ServerMessage parsed;
+  if (!message || !parsed.ParseFromString(std::string(message->payload))) {
+    throw std::logic_error("FrameStream::encode wrote no ServerMessage");
+  }
+  frame = std::move(*parsed.mutable_frame());
   encoded(std::move(record));
 }
 

@@ -3,11 +3,13 @@
 // quantized and optionally as deltas against the last frame the client acknowledged), and
 // which triangles the client already has. Snapshot -> felt.v1.Frame; no sockets. A frame is
 // planned on the session's thread and encoded on any (the server's frame encoder), so that
-// encoding never holds up the haptic updates that thread answers.
+// encoding never holds up the haptic updates that thread answers; its bodies are encoded once
+// per snapshot and encoding for every subscriber (shared_frame_bodies.hpp).
 
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "felt/v1/frames.pb.h"
@@ -17,6 +19,8 @@
 #include "wire/vector_quantizer.hpp"
 
 namespace felt::net {
+
+class SharedFrameBodies;
 
 struct FrameOptions {
   double rate_hz = 60;
@@ -85,14 +89,16 @@ class FrameStream {
   /// Plans the next frame from `snapshot`; `skipped` frames were dropped before it. The frame
   /// counts as built from here on (has_new, dropped).
   Plan plan(std::shared_ptr<const SceneSnapshot> snapshot, SceneId scene, std::uint64_t skipped);
-  /// Encodes `plan` as `frame`, and what later deltas need of it as `record`. Touches no
-  /// stream: any thread.
-  static void encode(const Plan& plan, felt::v1::Frame& frame, FrameRecord& record);
+  /// Encodes `plan` as a length-delimited ServerMessage holding its Frame, appended to `out`,
+  /// and what later deltas need of it as `record`. Bodies that are not deltas come from
+  /// `shared`, encoded there once per snapshot and encoding. Touches no stream: any thread.
+  static void encode(const Plan& plan, SharedFrameBodies& shared, std::string& out,
+                     FrameRecord& record);
   /// Puts `proxies` into `frame`.
   static void put_proxies(const std::vector<ProxyView>& proxies, felt::v1::Frame& frame);
   /// The frame planned last was encoded as `record`.
   void encoded(FrameRecord record) { building_ = std::move(record); }
-  /// plan, encode and encoded in a row.
+  /// plan, encode and encoded in a row, the frame parsed back from its bytes.
   void build(std::shared_ptr<const SceneSnapshot> snapshot, SceneId scene, std::uint64_t skipped,
              felt::v1::Frame& frame);
   /// The frame last built was replaced before it was sent: the triangles it carried must go

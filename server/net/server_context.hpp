@@ -10,6 +10,7 @@
 #include <boost/asio/thread_pool.hpp>
 
 #include "net/server_log.hpp"
+#include "net/shared_frame_bodies.hpp"
 #include "runtime/scene_registry.hpp"
 #include "scene/scene_directory.hpp"
 #include "scheduling/idle_core_spinners.hpp"
@@ -59,6 +60,8 @@ struct ServerContext {
   /// them: encoding a 10,000-vertex body's 16-bit deltas takes 70 us (frame_stream_bench), in
   /// which the haptic updates of every client on that thread would wait
   boost::asio::thread_pool frame_encoder{1};
+  /// the bodies of the frames being encoded, once per snapshot and encoding for every session
+  SharedFrameBodies frame_bodies{};
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   /// touched by every haptic update, when the server keeps idle cores awake
   IdleCoreSpinners* idle_core_spinners = nullptr;

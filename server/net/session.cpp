@@ -59,7 +59,7 @@ Session::Session(std::unique_ptr<Transport> transport, ServerContext& context)
       context_(context),
       id_(context.next_client_id.fetch_add(1)),
       outbound_(*transport_, *this, context.options.max_queued_reply_bytes),
-      frames_(id_, transport_->executor(), context.frame_encoder, outbound_),
+      frames_(id_, transport_->executor(), context.frame_encoder, context.frame_bodies, outbound_),
       hello_timer_(transport_->executor()) {}
 
 Session::~Session() {

@@ -4,8 +4,6 @@
 
 #include <boost/asio/post.hpp>
 
-#include "wire/message_codec.hpp"
-
 namespace felt::net {
 
 namespace asio = boost::asio;
@@ -18,8 +16,14 @@ constexpr auto kPresenceWindow = std::chrono::seconds(1);
 }  // namespace
 
 SessionFrames::SessionFrames(ClientId client, const Transport::Executor& strand,
-                             asio::thread_pool& encoder, OutboundQueue& outbound)
-    : client_(client), strand_(strand), encoder_(encoder), outbound_(outbound), timer_(strand) {}
+                             asio::thread_pool& encoder, SharedFrameBodies& shared,
+                             OutboundQueue& outbound)
+    : client_(client),
+      strand_(strand),
+      encoder_(encoder),
+      shared_(shared),
+      outbound_(outbound),
+      timer_(strand) {}
 
 void SessionFrames::subscribe(const FrameOptions& options) {
   stream_.start(options);
@@ -64,6 +68,8 @@ void SessionFrames::schedule() {
   const auto period =
       std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / stream_.options().rate_hz));
   due_ += period;
+  // on the grid of the period's multiples on the steady clock, which every session shares
+  due_ -= due_.time_since_epoch() % period;
   const auto now = std::chrono::steady_clock::now();
   if (due_ < now) {
     // a starved thread: the ticks that should have come meanwhile are lost, not made up for
@@ -127,11 +133,9 @@ std::vector<ProxyView> SessionFrames::proxies() const {
 void SessionFrames::encode(FrameStream::Plan plan) {
   encoding_ = true;
   asio::post(encoder_, [this, owner = owner_, plan = std::move(plan), generation = generation_] {
-    felt::v1::ServerMessage message;
     FrameStream::FrameRecord record;
-    FrameStream::encode(plan, *message.mutable_frame(), record);
     std::string bytes;
-    wire::append_message(bytes, message);
+    FrameStream::encode(plan, shared_, bytes, record);
     auto session = owner.lock();
     if (!session) return;
     // the reference moves into the handler, so that the session is never destroyed on this

@@ -1,7 +1,10 @@
 #pragma once
 // A session's frame subscription at work: a timer at the subscription's rate plans a frame from
 // the latest snapshot of the session's scene on the session's strand, the server's frame encoder
-// encodes it, and the bytes come back into the outbound queue's slot (latest wins). A frame that
+// encodes it, and the bytes come back into the outbound queue's slot (latest wins). The timer
+// ticks on a grid of its period common to every session (multiples of the period on the steady
+// clock), so that sessions at one rate take the same snapshot and share its encoded bodies
+// (shared_frame_bodies.hpp). A frame that
 // comes back after its subscription changed, ended or moved to another scene is not sent.
 
 #include <cstdint>
@@ -14,6 +17,7 @@
 
 #include "net/frame_stream.hpp"
 #include "net/outbound_queue.hpp"
+#include "net/shared_frame_bodies.hpp"
 
 namespace felt::net {
 
@@ -21,7 +25,8 @@ class SessionFrames {
  public:
   /// Frames for client `client`, whose own proxies they mark.
   SessionFrames(ClientId client, const Transport::Executor& strand,
-                boost::asio::thread_pool& encoder, OutboundQueue& outbound);
+                boost::asio::thread_pool& encoder, SharedFrameBodies& shared,
+                OutboundQueue& outbound);
   /// `owner` (the session) is kept alive while a tick or an encoding is under way.
   void set_owner(std::weak_ptr<void> owner) { owner_ = std::move(owner); }
   /// Runs on every tick, before the frame is planned (the session's housekeeping).
@@ -56,6 +61,7 @@ class SessionFrames {
   const ClientId client_;
   Transport::Executor strand_;
   boost::asio::thread_pool& encoder_;
+  SharedFrameBodies& shared_;
   OutboundQueue& outbound_;
   std::weak_ptr<void> owner_;
   std::function<void()> housekeeping_;
@@ -73,8 +79,8 @@ class SessionFrames {
   std::uint64_t skipped_ = 0;
   /// frames the scene had for this session that were not built, to be told with the next one
   std::uint64_t lost_ = 0;
-  /// the timer's next tick: on a fixed grid of the subscription's period from its start, so
-  /// that a late tick does not lower the rate after it
+  /// the timer's next tick: on a fixed grid of the subscription's period (its multiples on the
+  /// steady clock), so that a late tick does not lower the rate after it
   std::chrono::steady_clock::time_point due_{};
   std::uint64_t late_ticks_ = 0;  ///< whole periods the timer came late by, before this tick
 };

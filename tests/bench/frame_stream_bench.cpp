@@ -1,14 +1,15 @@
 // What a frame costs: building one from a snapshot of the 100 x 100 cloth of
-// scenes/service_bench.json and serializing it, per encoding (docs/results/service.md). Every
-// client's frames are encoded on the server's one frame encoder thread (net/server_context.hpp),
-// so this times how many clients' frames one core encodes at a rate.
+// scenes/service_bench.json and serializing it, per encoding, for one subscriber
+// (docs/results/service.md). Every client's frames are encoded on the server's one frame encoder
+// thread (net/server_context.hpp); subscribers of one snapshot in one encoding share its bodies,
+// so this is what each snapshot and encoding costs that thread (eight subscribers:
+// scripts/bench-frame-sharing).
 
 #include <benchmark/benchmark.h>
 
 #include "bench_scene.hpp"
-#include "felt/v1/envelope.pb.h"
 #include "net/frame_stream.hpp"
-#include "wire/message_codec.hpp"
+#include "net/shared_frame_bodies.hpp"
 
 namespace felt::net {
 namespace {
@@ -25,12 +26,15 @@ void frame(benchmark::State& state, bool quantized, bool deltas, bool normals) {
   std::size_t i = 0, bytes = 0;
   std::string out;
   for (auto _ : state) {
-    v1::ServerMessage message;
-    stream.build(snapshots[i++ % snapshots.size()], 1, 0, *message.mutable_frame());
+    // one subscriber: nobody shares its bodies (shared_frame_bodies.hpp)
+    SharedFrameBodies shared;
+    const FrameStream::Plan plan = stream.plan(snapshots[i++ % snapshots.size()], 1, 0);
+    FrameStream::FrameRecord record;
     out.clear();
-    wire::append_message(out, message);
+    FrameStream::encode(plan, shared, out, record);
+    stream.encoded(std::move(record));
     stream.written();
-    if (deltas) stream.acknowledge(message.frame().sequence());
+    if (deltas) stream.acknowledge(plan.sequence);
     bytes += out.size();
     benchmark::DoNotOptimize(out.data());
   }

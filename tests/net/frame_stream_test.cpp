@@ -1,13 +1,20 @@
 // The server's frame stream against the client's assembler: what one encodes the other decodes,
-// in every encoding, with the triangles sent once, deltas only against acknowledged frames, and
-// 16-bit deltas well under float32's size on a moving cloth.
+// in every encoding, with the triangles sent once, deltas only against acknowledged frames,
+// 16-bit deltas well under float32's size on a moving cloth, and the bodies of one snapshot in
+// one encoding encoded once for every subscriber.
 
 #include "net/frame_stream.hpp"
+
+#include <optional>
+#include <string>
 
 #include <gtest/gtest.h>
 
 #include "core/cloth/cloth_grid.hpp"
+#include "felt/v1/envelope.pb.h"
 #include "frame_assembler.hpp"
+#include "net/shared_frame_bodies.hpp"
+#include "wire/frame_codec.hpp"
 
 namespace felt::net {
 namespace {
@@ -209,6 +216,81 @@ TEST(FrameStream, ASubscriptionSeesOnlyItsBodies) {
   ASSERT_EQ(frame.bodies_size(), 1);
   EXPECT_EQ(frame.bodies(0).body_id(), 1u);
   EXPECT_EQ(frame.bodies(0).name(), "c1");
+}
+
+/// The stream's next frame of `snapshot` encoded against `shared`, its bytes (a length-delimited
+/// ServerMessage) and the frame parsed from them.
+struct Encoded {
+  std::string bytes;
+  v1::ServerMessage message;
+};
+
+Encoded encode_shared(FrameStream& stream, std::shared_ptr<const SceneSnapshot> snapshot,
+                      SharedFrameBodies& shared) {
+  const FrameStream::Plan plan = stream.plan(std::move(snapshot), 7, 0);
+  Encoded out;
+  FrameStream::FrameRecord record;
+  FrameStream::encode(plan, shared, out.bytes, record);
+  stream.encoded(std::move(record));
+  stream.written();
+  const std::optional<wire::FrameView> frame = wire::first_frame(out.bytes);
+  EXPECT_TRUE(frame && frame->size == out.bytes.size());
+  if (frame) {
+    EXPECT_TRUE(out.message.ParseFromString(std::string(frame->payload)));
+  }
+  return out;
+}
+
+TEST(SharedFrameBodies, SubscribersOfOneSnapshotAndEncodingShareItsBodiesBytes) {
+  World world = swinging_world(true);
+  const std::shared_ptr<const SceneSnapshot> snapshot = make_snapshot(world);
+  SharedFrameBodies shared;
+  FrameStream first, second, quantized;
+  first.start({60, true, {}, false, false});
+  second.start({60, true, {}, false, false});
+  quantized.start({60, true, {}, true, false});
+  const Encoded a = encode_shared(first, snapshot, shared);
+  EXPECT_EQ(shared.encoded(), 2u);  // two bodies
+  const Encoded b = encode_shared(second, snapshot, shared);
+  EXPECT_EQ(shared.encoded(), 2u);
+  EXPECT_EQ(shared.shared(), 2u);
+  EXPECT_EQ(a.bytes, b.bytes);  // the same frame: the same bytes, in protobuf's own order
+  EXPECT_EQ(a.bytes.substr(a.bytes.size() - a.message.ByteSizeLong()),
+            a.message.SerializeAsString());
+  client::FrameAssembler assembler;
+  const auto decoded = assembler.assemble(b.message.frame());
+  ASSERT_TRUE(decoded) << decoded.error();
+  EXPECT_EQ(max_error(*decoded, 1, world), 0);
+  // another encoding is encoded for itself
+  encode_shared(quantized, snapshot, shared);
+  EXPECT_EQ(shared.encoded(), 4u);
+}
+
+TEST(SharedFrameBodies, DeltasAreEachClientsOwnAndKeyFramesAreShared) {
+  World world = swinging_world();
+  SharedFrameBodies shared;
+  FrameStream acknowledging, not_acknowledging;
+  acknowledging.start({60, false, {}, true, true});
+  not_acknowledging.start({60, false, {}, true, true});
+  client::FrameAssembler assembler;
+  const auto first = make_snapshot(world);
+  const Encoded key = encode_shared(acknowledging, first, shared);
+  encode_shared(not_acknowledging, first, shared);
+  EXPECT_EQ(shared.encoded(), 1u);  // one key frame for both
+  ASSERT_TRUE(assembler.assemble(key.message.frame()));
+  ASSERT_TRUE(acknowledging.acknowledge(key.message.frame().sequence()));
+  for (int s = 0; s < 16; ++s) world.step();
+  const auto next = make_snapshot(world);
+  const Encoded delta = encode_shared(acknowledging, next, shared);
+  EXPECT_EQ(delta.message.frame().base_sequence(), key.message.frame().sequence());
+  EXPECT_EQ(shared.encoded(), 1u);  // a delta is not shared
+  const auto decoded = assembler.assemble(delta.message.frame());
+  ASSERT_TRUE(decoded) << decoded.error();
+  EXPECT_LT(max_error(*decoded, 0, world), half_step(delta.message.frame(), 0));
+  // the client without a base gets the snapshot's key frame, encoded for it
+  const Encoded other = encode_shared(not_acknowledging, next, shared);
+  EXPECT_EQ(other.message.frame().base_sequence(), 0u);
+  EXPECT_EQ(shared.encoded(), 2u);
 }
 
 }  // namespace
