@@ -1,40 +1,23 @@
 #include "feltd/run_command.hpp"
 
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "feltd/run_stats_json.hpp"
-#include "feltd/scene_options.hpp"
+#include "feltd/scene_file.hpp"
 #include "runtime/batch_run.hpp"
-#include "scene/scene_loader.hpp"
-#include "scene/scene_overrides.hpp"
+#include "runtime/run_trace.hpp"
 
 namespace felt::feltd {
 
 int run(const RunOptions& options) {
-  auto document = felt::read_scene_json(options.scene);
-  if (!document) {
-    std::cerr << "feltd: " << document.error().what() << "\n";
-    return 2;
-  }
-  for (const std::string& assignment : options.overrides) {
-    if (auto applied = felt::apply_override(*document, assignment); !applied) {
-      std::cerr << "feltd: --set " << assignment << ": " << applied.error() << "\n";
-      return 2;
-    }
-  }
-  // without --scene-dir, meshes are looked up beside the scene file
-  const std::filesystem::path beside = std::filesystem::path(options.scene).parent_path();
-  auto scene = felt::load_scene(
-      *document, scene_options(!options.scene_dir.empty() ? std::filesystem::path(options.scene_dir)
-                               : beside.empty()           ? std::filesystem::path(".")
-                                                          : beside));
+  auto scene = load_scene_file(options.scene, options.overrides, options.scene_dir);
   if (!scene) {
-    std::cerr << "feltd: " << options.scene << ": " << scene.error().what() << "\n";
+    std::cerr << "feltd: " << scene.error() << "\n";
     return 2;
   }
   felt::BatchHaptics haptics;
@@ -59,7 +42,23 @@ int run(const RunOptions& options) {
     }
     haptics.record = &recording;
   }
-  const felt::BatchRunStats stats = felt::run_batch(*scene, options.steps, haptics);
+  std::optional<felt::RunTrace> trace;
+  if (!options.trace.empty()) {
+    auto opened = felt::RunTrace::open(options.trace, scene->name, options.every);
+    if (!opened) {
+      std::cerr << "feltd: --trace: " << opened.error() << "\n";
+      return 2;
+    }
+    trace.emplace(std::move(*opened));
+    trace->record(scene->world, {});
+  }
+  const felt::BatchRunStats stats = felt::run_batch(
+      *scene, options.steps, haptics,
+      trace
+          ? felt::StepObserver([&trace](const felt::World& world, const felt::StepReport& report) {
+              trace->record(world, report);
+            })
+          : felt::StepObserver());
   const nlohmann::json json = stats_to_json(stats);
   std::printf("%llu steps, sim %.4f s, wall %.3f s, %.4f ms/step\n",
               static_cast<unsigned long long>(stats.steps), stats.sim_time, stats.wall_seconds,
@@ -84,6 +83,14 @@ int run(const RunOptions& options) {
   if (stats.nonfinite) {
     std::printf("UNSTABLE: %llu steps could not be rescued (rolled back, body stopped)\n",
                 static_cast<unsigned long long>(stats.unrecoverable_steps));
+  }
+  if (trace) {
+    if (!trace->finish()) {
+      std::cerr << "feltd: --trace: " << trace->error() << "\n";
+      return 1;
+    }
+    std::printf("trace: %s/trace.csv, %zu frames in %s/frames.pvd\n", options.trace.c_str(),
+                trace->frames(), options.trace.c_str());
   }
   if (!options.stats_json.empty()) {
     std::ofstream out(options.stats_json);
@@ -116,6 +123,13 @@ CLI::App* add_run_command(CLI::App& app, RunOptions& options) {
       ->add_option("--replay", options.replay,
                    "Drive the devices from a --record CSV and compare their contacts with it")
       ->check(CLI::ExistingFile);
+  run_cmd->add_option("--trace", options.trace,
+                      "Write DIR/trace.csv (a row per step and body: energies and drift, centre of "
+                      "mass, bounding box, speed, strain, substeps, state hash) and every body's "
+                      "positions as a VTK series (DIR/frames.pvd)");
+  run_cmd->add_option("--every", options.every, "With --trace: a VTK frame every N steps")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   return run_cmd;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // `feltd run`: one scene stepped headless for a number of steps, without a network, with its
-// statistics printed and optionally written as JSON, and scripted devices recorded or replayed.
+// statistics printed and optionally written as JSON, scripted devices recorded or replayed, and
+// the run traced step by step (runtime/run_trace.hpp).
 
 #include <cstdint>
 #include <string>
@@ -18,6 +19,8 @@ struct RunOptions {
   std::string stats_json;
   std::string record;
   std::string replay;
+  std::string trace;         ///< directory of the trace; empty: none
+  std::uint64_t every = 10;  ///< steps between the trace's VTK frames
 };
 
 /// Adds `run` and its flags to `app`, to be read into `options`; returns the subcommand.

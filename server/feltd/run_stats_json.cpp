@@ -50,6 +50,7 @@ nlohmann::json stats_to_json(const felt::BatchRunStats& stats) {
   return {{"steps", stats.steps},
           {"sim_time", stats.sim_time},
           {"wall_seconds", stats.wall_seconds},
+          {"cpu_seconds", stats.cpu_seconds},
           {"ms_per_step", stats.ms_per_step},
           {"nonfinite", stats.nonfinite},
           {"rescued_steps", stats.rescued_steps},

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+
+#include <time.h>
 #include <utility>
 
 #include "core/geometry/mesh_topology.hpp"
@@ -13,6 +15,13 @@
 
 namespace felt {
 namespace {
+
+/// CPU time this thread has used, s.
+double thread_cpu_seconds() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
 
 bool all_finite(std::span<const Vec3> values) {
   return std::ranges::all_of(values, [](const Vec3& v) { return v.allFinite(); });
@@ -161,12 +170,16 @@ class BatchServo {
 
 }  // namespace
 
-BatchRunStats run_batch(Scene& scene, std::uint64_t steps, const BatchHaptics& haptics) {
+BatchRunStats run_batch(Scene& scene, std::uint64_t steps, const BatchHaptics& haptics,
+                        const StepObserver& observer) {
   BatchRunStats stats;
   World& world = scene.world;
   std::optional<BatchServo> servo;
   if (!scene.devices.empty() || haptics.replay) servo.emplace(scene, haptics);
   const auto start = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::duration observed{};
+  const double cpu_start = thread_cpu_seconds();
+  double cpu_observed = 0;
   for (std::uint64_t s = 0; s < steps; ++s) {
     if (servo) servo->before_step(world);
     const StepReport report = world.step();
@@ -179,9 +192,17 @@ BatchRunStats run_batch(Scene& scene, std::uint64_t steps, const BatchHaptics& h
     if (!world.solids().bodies().empty()) {
       record_solid_step(world.solids().last_stats(), stats.solids);
     }
+    if (observer) {
+      const auto observe_start = std::chrono::steady_clock::now();
+      const double cpu_observe_start = thread_cpu_seconds();
+      observer(world, report);
+      observed += std::chrono::steady_clock::now() - observe_start;
+      cpu_observed += thread_cpu_seconds() - cpu_observe_start;
+    }
   }
   stats.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start - observed).count();
+  stats.cpu_seconds = thread_cpu_seconds() - cpu_start - cpu_observed;
   if (servo) servo->finish(stats.haptics);
   stats.steps = steps;
   stats.sim_time = world.time();

@@ -2,6 +2,7 @@
 // Stepping a scene headless, as fast as it goes: `feltd run`, tests and benchmarks.
 
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -69,6 +70,9 @@ struct BatchRunStats {
   std::uint64_t steps = 0;
   double sim_time = 0;
   double wall_seconds = 0;
+  /// CPU time of the stepping thread over the same steps: the cost without what else the
+  /// machine runs (on a shared machine wall time also counts the waits for a core)
+  double cpu_seconds = 0;
   double ms_per_step = 0;
   bool nonfinite = false;  ///< a step could not be rescued, or a non-finite value remains
   std::uint64_t rescued_steps = 0;
@@ -79,9 +83,15 @@ struct BatchRunStats {
   HapticRunStats haptics;
 };
 
+/// Looks at the world after each step (a trace, a comparison with a reference run).
+using StepObserver = std::function<void(const World& world, const StepReport& report)>;
+
 /// Takes `steps` steps of `scene` and reports what happened. The scene's scripted devices are
 /// ticked at the servo rate in simulated time, after each step, against the surfaces between
 /// the last two steps (as the servo thread renders them live), so a run is reproducible.
-BatchRunStats run_batch(Scene& scene, std::uint64_t steps, const BatchHaptics& haptics = {});
+/// `observer`, if given, is called after each step; its time is left out of the wall time, so
+/// that what it records does not count as the cost of the simulation.
+BatchRunStats run_batch(Scene& scene, std::uint64_t steps, const BatchHaptics& haptics = {},
+                        const StepObserver& observer = {});
 
 }  // namespace felt
