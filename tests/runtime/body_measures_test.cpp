@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "core/cloth/cloth_grid.hpp"
 #include "runtime/trajectory_error.hpp"
