@@ -89,7 +89,7 @@ Outcome run_bullet(std::uint32_t n, const BulletConfig& config) {
   outcome.wall_per_sim_s = wall.count() / kSeconds;
   outcome.max_strain = max_structural_strain(n, x);
   outcome.sag_error = sag_error(x);
-  outcome.ok = all_finite(x);
+  outcome.ok = intact(outcome.max_strain, x);
   return outcome;
 }
 

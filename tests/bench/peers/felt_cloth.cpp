@@ -44,7 +44,7 @@ Outcome run_felt(std::uint32_t n, const FeltConfig& config) {
   outcome.wall_per_sim_s = wall.count() / kSeconds;
   outcome.max_strain = max_structural_strain(n, x);
   outcome.sag_error = sag_error(x);
-  outcome.ok = all_finite(x) && (flags & kStepUnrecoverable) == 0;
+  outcome.ok = intact(outcome.max_strain, x) && (flags & kStepUnrecoverable) == 0;
   if (flags & kStepRescued) outcome.note = "rescued";
   return outcome;
 }

@@ -32,8 +32,9 @@ Real sag_error(std::span<const Vec3> x) {
   return (kSide / 2 - lowest - kSide) / kSide;
 }
 
-bool all_finite(std::span<const Vec3> x) {
-  return std::all_of(x.begin(), x.end(), [](const Vec3& p) { return p.allFinite(); });
+bool intact(Real max_strain, std::span<const Vec3> x) {
+  return max_strain < kBlownUpStrain &&
+         std::all_of(x.begin(), x.end(), [](const Vec3& p) { return p.allFinite(); });
 }
 
 }  // namespace felt::peers

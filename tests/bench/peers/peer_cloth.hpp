@@ -26,7 +26,7 @@ struct Outcome {
   double wall_per_sim_s = 0;  ///< wall seconds per simulated second
   double max_strain = 0;      ///< max_structural_strain at the end
   double sag_error = 0;       ///< sag_error at the end
-  bool ok = true;             ///< finite, and (Felt) no step given up by the health check
+  bool ok = true;             ///< intact, and (Felt) no step given up by the health check
   std::string note;           ///< Felt: "rescued" when the health check added substeps
 };
 
@@ -43,7 +43,11 @@ Real max_structural_strain(std::uint32_t n, std::span<const Vec3> x);
 /// lowest particles stay 1 m below the pins.
 Real sag_error(std::span<const Vec3> x);
 
-/// Whether every coordinate is finite (a blown-up run measures nothing).
-bool all_finite(std::span<const Vec3> x);
+/// A structural edge stretched beyond this many times its rest length is a blown-up cloth.
+inline constexpr Real kBlownUpStrain = 10;
+
+/// Whether the cloth is still a cloth: every coordinate finite and every structural edge
+/// within kBlownUpStrain (a blown-up run measures nothing).
+bool intact(Real max_strain, std::span<const Vec3> x);
 
 }  // namespace felt::peers
