@@ -70,9 +70,10 @@ ClothParams read_springs(const ObjectReader& body) {
     w.gust_period = wind.positive("gust_period", w.gust_period);
   }
   if (body.has("stretch_limit")) {
-    const ObjectReader limit(body.at("stretch_limit"), body.path_of("stretch_limit"),
-                             {"enabled", "max_strain", "max_compression", "iterations",
-                              "position_correction", "velocity_correction"});
+    const ObjectReader limit(
+        body.at("stretch_limit"), body.path_of("stretch_limit"),
+        {"enabled", "max_strain", "max_compression", "iterations", "projection_iterations",
+         "position_correction", "velocity_correction"});
     StretchLimit& stretch = params.stretch;
     stretch.enabled = limit.boolean("enabled", true);
     stretch.max_strain = limit.positive("max_strain", stretch.max_strain);
@@ -81,6 +82,8 @@ ClothParams read_springs(const ObjectReader& body) {
       if (stretch.max_compression >= 1) fail(limit.path_of("max_compression"), "must be < 1");
     }
     stretch.iterations = static_cast<int>(limit.count("iterations", stretch.iterations, 1, 1000));
+    stretch.projection_iterations = static_cast<int>(
+        limit.count("projection_iterations", stretch.projection_iterations, 0, 100));
     stretch.position_correction = limit.boolean("position_correction", stretch.position_correction);
     stretch.velocity_correction = limit.boolean("velocity_correction", stretch.velocity_correction);
   }

@@ -8,7 +8,8 @@
 // stretches. A cloth held to 10 % sags at most 1.1 times as far. Then the served scene
 // (scenes/service_bench.json) the same way.
 //
-// Usage: stretch_limit_study [N]   (N particles per side of the per-integrator cloth, 40)
+// Usage: stretch_limit_study [N] [TABLE]   (N particles per side of the per-integrator cloth, 40;
+// TABLE one of top_row, served, corners: only that table)
 // Prints Markdown tables. Not a unit test: machines are shared and noisy, so compare ratios
 // within one run.
 
@@ -110,22 +111,18 @@ void header() {
       "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
 }
 
-}  // namespace
-}  // namespace felt
+struct Case {
+  const char* integrator;
+  Real h;
+};
 
-int main(int argc, char** argv) {
-  using namespace felt;
-  const auto n = static_cast<std::uint32_t>(argc > 1 ? std::atoi(argv[1]) : 40);
+void top_row_table(std::uint32_t n) {
   const Run reference = run(hanging(n, "implicit_euler", 4e-3, false, 100));
   std::printf(
       "%u x %u, 2 m, 4 kg, top row pinned; stiff reference (k x 100, implicit Euler, "
       "4 ms): sag %.4f m, largest strain %.4f, KE at 5 s %.2g J\n\n",
       n, n, reference.sag, reference.max_strain, reference.final_kinetic_energy);
   header();
-  struct Case {
-    const char* integrator;
-    Real h;
-  };
   for (const Case& c :
        {Case{"symplectic_euler", 2e-3}, Case{"explicit_euler", 2.5e-4}, Case{"midpoint", 1e-3},
         Case{"rk4", 2e-3}, Case{"verlet", 2e-3}, Case{"velocity_verlet", 2e-3},
@@ -135,7 +132,9 @@ int main(int argc, char** argv) {
     const Run on = run(hanging(n, c.integrator, c.h, true));
     print_row(c.integrator, c.h, off, on, reference.sag);
   }
+}
 
+void served_table() {
   const Run served_reference = run(hanging(100, "implicit_euler", 4e-3, false, 100));
   std::printf(
       "\nscenes/service_bench.json (100 x 100, 2 ms); stiff reference "
@@ -160,7 +159,9 @@ int main(int argc, char** argv) {
         *integrator != 0 ? std::string("served scene, ") + integrator : std::string("served scene"),
         2e-3, off, on, served_reference.sag);
   }
+}
 
+void corners_table(std::uint32_t n) {
   // most of the weight carried by the limit through the few springs at two corners
   const Run corner_reference =
       run(hanging(n, "implicit_euler", 4e-3, false, 100, GridPinPreset::kTopCorners));
@@ -172,5 +173,18 @@ int main(int argc, char** argv) {
     const Run on = run(hanging(n, c.integrator, c.h, true, 1, GridPinPreset::kTopCorners));
     print_row(c.integrator, c.h, off, on, corner_reference.sag);
   }
+}
+
+}  // namespace
+}  // namespace felt
+
+int main(int argc, char** argv) {
+  using namespace felt;
+  const auto n = static_cast<std::uint32_t>(argc > 1 ? std::atoi(argv[1]) : 40);
+  const std::string only = argc > 2 ? argv[2] : "";
+  const auto wanted = [&](const char* table) { return only.empty() || only == table; };
+  if (wanted("top_row")) top_row_table(n);
+  if (wanted("served")) served_table();
+  if (wanted("corners")) corners_table(n);
   return 0;
 }

@@ -320,5 +320,16 @@ TEST(SceneLoader, ReadsAnchorsAndMaxCompression) {
   EXPECT_DOUBLE_EQ(body.params().stretch.max_compression, 0.05);
 }
 
+TEST(SceneLoader, ReadsTheStretchLimitsProjectionIterationsWithinTheirRange) {
+  json doc = minimal_cloth();
+  doc["bodies"][0]["stretch_limit"] = {{"max_strain", 0.1}, {"projection_iterations", 0}};
+  const auto scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  EXPECT_EQ(scene->world.cloths()[0].params().stretch.projection_iterations, 0);
+  doc["bodies"][0]["stretch_limit"]["projection_iterations"] = 101;
+  EXPECT_EQ(error_of(doc),
+            "bodies[0].stretch_limit.projection_iterations: must be between 0 and 100");
+}
+
 }  // namespace
 }  // namespace felt

@@ -1,22 +1,37 @@
 #include "core/cloth/stretch_limiter.hpp"
 
 #include <algorithm>
+#include <optional>
+#include <utility>
 
 namespace felt {
 namespace {
 
-struct Bounds {
-  Real max_factor;  ///< 1 + max strain
-  Real min_factor;  ///< 1 − max compression; 0 when off
-  Real max_slack;   ///< lengths up to max_factor + max_slack (times rest) count as held
-  Real min_slack;
+/// The length a spring beyond one of its bounds is set to, and whether it is beyond it by more
+/// than half the slack (see project_springs); nothing when it is within its bounds.
+struct Excess {
+  Real target;
+  bool beyond_slack;
 };
 
-Bounds bounds_of(const StretchLimit& limit) {
-  const bool compression = limit.max_compression >= 0;
-  return {1 + limit.max_strain, compression ? 1 - limit.max_compression : 0,
-          kStretchTolerance * limit.max_strain,
-          compression ? kStretchTolerance * limit.max_compression : 0};
+std::optional<Excess> excess_of(const Spring& s, Real length, const StretchBounds& b) {
+  if (length > b.max_factor * s.rest_length) {
+    return Excess{b.max_factor * s.rest_length,
+                  length > (b.max_factor + 0.5 * b.max_slack) * s.rest_length};
+  }
+  if (length < b.min_factor * s.rest_length && length > 0) {
+    return Excess{b.min_factor * s.rest_length,
+                  length < (b.min_factor - 0.5 * b.min_slack) * s.rest_length};
+  }
+  return std::nullopt;
+}
+
+/// Whether a spring is at one of its bounds (within the slack): +1 at the upper bound (it may
+/// not lengthen), −1 at the lower (it may not shorten), 0 when free, with that bound's slack.
+std::pair<Real, Real> side_of(const Spring& s, Real length, const StretchBounds& b) {
+  if (length >= (b.max_factor - b.max_slack) * s.rest_length) return {1, b.max_slack};
+  if (length <= (b.min_factor + b.min_slack) * s.rest_length) return {-1, b.min_slack};
+  return {0, 0};
 }
 
 /// Visits the springs forward on even sweeps and backward on odd ones: alternating the order
@@ -47,9 +62,9 @@ void project_attachments(std::span<const Attachment> attachments, Real max_facto
 /// may lengthen a spring already checked. Each spring out of bounds is set to its bound, its ends
 /// moving in proportion to their inverse masses (about the midpoint for equal masses; the free end
 /// the whole way when the other is pinned), which keeps their centre of mass. Returns the sweeps
-/// taken.
-int project_springs(const ClothModel& model, std::span<const Real> inv_mass, const Bounds& b,
-                    int max_sweeps, ParticleState& state) {
+/// taken and whether the last found none beyond.
+std::pair<int, bool> project_springs(const ClothModel& model, std::span<const Real> inv_mass,
+                                     const StretchBounds& b, int max_sweeps, ParticleState& state) {
   int sweep = 0;
   bool out_of_bounds = true;
   while (out_of_bounds && sweep < max_sweeps) {
@@ -57,25 +72,18 @@ int project_springs(const ClothModel& model, std::span<const Real> inv_mass, con
     sweep_springs(model, sweep, [&](const Spring& s) {
       const Vec3 d = state.x[s.j] - state.x[s.i];
       const Real length = d.norm();
-      Real target;
-      if (length > b.max_factor * s.rest_length) {
-        target = b.max_factor * s.rest_length;
-        out_of_bounds |= length > (b.max_factor + 0.5 * b.max_slack) * s.rest_length;
-      } else if (length < b.min_factor * s.rest_length && length > 0) {
-        target = b.min_factor * s.rest_length;
-        out_of_bounds |= length < (b.min_factor - 0.5 * b.min_slack) * s.rest_length;
-      } else {
-        return;
-      }
+      const std::optional<Excess> e = excess_of(s, length, b);
+      if (!e) return;
+      out_of_bounds |= e->beyond_slack;
       const Real wi = inv_mass[s.i], wj = inv_mass[s.j];
       if (wi + wj == 0) return;
-      const Vec3 excess = (length - target) / (length * (wi + wj)) * d;
+      const Vec3 excess = (length - e->target) / (length * (wi + wj)) * d;
       state.x[s.i] += wi * excess;
       state.x[s.j] -= wj * excess;
     });
     ++sweep;
   }
-  return sweep;
+  return {sweep, !out_of_bounds};
 }
 
 /// Removes the velocity of particles moving away from the pin of a taut attachment.
@@ -96,9 +104,11 @@ void filter_attachment_velocities(std::span<const Attachment> attachments, Real 
 /// end imposes its own), which conserves momentum and takes kinetic energy away, never adds it.
 /// A spring counts as at its bound within the slack. Gauss–Seidel, until the largest velocity
 /// removed in a sweep would move a spring by less than the slack in a step of h, or `max_sweeps`.
-/// Returns the sweeps taken.
-int filter_spring_velocities(const ClothModel& model, std::span<const Real> inv_mass,
-                             const Bounds& b, Real h, int max_sweeps, ParticleState& state) {
+/// Returns the sweeps taken and whether the last found no spring moving past its bound.
+std::pair<int, bool> filter_spring_velocities(const ClothModel& model,
+                                              std::span<const Real> inv_mass,
+                                              const StretchBounds& b, Real h, int max_sweeps,
+                                              ParticleState& state) {
   int sweep = 0;
   bool moving_past = true;
   while (moving_past && sweep < max_sweeps) {
@@ -106,16 +116,7 @@ int filter_spring_velocities(const ClothModel& model, std::span<const Real> inv_
     sweep_springs(model, sweep, [&](const Spring& s) {
       const Vec3 d = state.x[s.j] - state.x[s.i];
       const Real length = d.norm();
-      // +1: the spring may not lengthen (at the upper bound); −1: not shorten; 0: free
-      Real side = 0;
-      Real slack = 0;
-      if (length >= (b.max_factor - b.max_slack) * s.rest_length) {
-        side = 1;
-        slack = b.max_slack;
-      } else if (length <= (b.min_factor + b.min_slack) * s.rest_length) {
-        side = -1;
-        slack = b.min_slack;
-      }
+      const auto [side, slack] = side_of(s, length, b);
       if (side == 0 || length == 0) return;
       const Real wi = inv_mass[s.i], wj = inv_mass[s.j];
       if (wi + wj == 0) return;
@@ -130,7 +131,7 @@ int filter_spring_velocities(const ClothModel& model, std::span<const Real> inv_
     });
     ++sweep;
   }
-  return sweep;
+  return {sweep, !moving_past};
 }
 
 }  // namespace
@@ -148,20 +149,100 @@ void StretchLimiter::update_attachments(const ClothModel& model, std::span<const
   attachments_valid_ = true;
 }
 
+int StretchLimiter::project_together(const ClothModel& model, std::span<const Real> inv_mass,
+                                     const StretchBounds& b, int max_iterations,
+                                     ParticleState& state) {
+  // the springs held so far stay held at their bound for the rest of the pass: a Newton step
+  // pulls other springs past their bounds, and letting those that came back below go again
+  // made the set alternate without converging
+  held_.assign(model.springs.size(), 0);
+  for (int iteration = 0; iteration < max_iterations; ++iteration) {
+    active_.clear();
+    residual_.clear();
+    bool out_of_bounds = false;
+    for (std::uint32_t k = 0; k < model.springs.size(); ++k) {
+      const Spring& s = model.springs[k];
+      if (!is_limited(s) || inv_mass[s.i] + inv_mass[s.j] == 0) continue;
+      const Real length = (state.x[s.j] - state.x[s.i]).norm();
+      const std::optional<Excess> e = excess_of(s, length, b);
+      if (e) {
+        out_of_bounds |= e->beyond_slack;
+        held_[k] = length > s.rest_length ? 1 : -1;
+      } else if (iteration == 0) {
+        held_[k] = static_cast<std::int8_t>(side_of(s, length, b).first);
+      }
+      if (held_[k] == 0) continue;
+      active_.push_back(k);
+      residual_.push_back(length - (held_[k] > 0 ? b.max_factor : b.min_factor) * s.rest_length);
+    }
+    if (!out_of_bounds || !solve_.factorize(model, inv_mass, active_, state.x)) return iteration;
+    solve_.correct(model, inv_mass,
+                   Eigen::Map<const Eigen::VectorXd>(residual_.data(), std::ssize(residual_)),
+                   state.x);
+  }
+  return max_iterations;
+}
+
+bool StretchLimiter::filter_together(const ClothModel& model, std::span<const Real> inv_mass,
+                                     const StretchBounds& b, Real h, bool always,
+                                     ParticleState& state) {
+  // every spring at its bound is in the set, those whose ends approach each other too: with
+  // only the springs moving past their bounds, each solve set the next ones moving and the
+  // set grew by a few springs a solve (no rest after 10 solves a pass on a cloth hung from two
+  // corners). A spring stopped from slackening starts again in the next step.
+  active_.clear();
+  residual_.clear();
+  bool moving_past = false;
+  for (std::uint32_t k = 0; k < model.springs.size(); ++k) {
+    const Spring& s = model.springs[k];
+    if (!is_limited(s) || inv_mass[s.i] + inv_mass[s.j] == 0) continue;
+    const Vec3 d = state.x[s.j] - state.x[s.i];
+    const Real length = d.norm();
+    const auto [side, slack] = side_of(s, length, b);
+    if (side == 0 || length == 0) continue;
+    const Real apart = (state.v[s.j] - state.v[s.i]).dot(d) / length;
+    moving_past |= side * apart * h > slack * s.rest_length;
+    active_.push_back(k);
+    residual_.push_back(apart);
+  }
+  if (!(moving_past || always) || !solve_.factorize(model, inv_mass, active_, state.x))
+    return false;
+  solve_.correct(model, inv_mass,
+                 Eigen::Map<const Eigen::VectorXd>(residual_.data(), std::ssize(residual_)),
+                 state.v);
+  return true;
+}
+
 StretchLimitStats StretchLimiter::apply(const ClothModel& model, std::span<const Real> inv_mass,
                                         const StretchLimit& limit, Real h, ParticleState& state) {
   StretchLimitStats stats;
   if (!limit.enabled) return stats;
-  const Bounds b = bounds_of(limit);
+  const StretchBounds b = StretchBounds::of(limit);
   update_attachments(model, inv_mass);
   if (limit.position_correction) {
     project_attachments(attachments_, b.max_factor, state);
-    stats.position_sweeps = project_springs(model, inv_mass, b, limit.iterations, state);
+    const auto [sweeps, held] = project_springs(model, inv_mass, b, limit.iterations, state);
+    stats.position_sweeps = sweeps;
+    if (!held) {
+      stats.position_projections =
+          project_together(model, inv_mass, b, limit.projection_iterations, state);
+    }
   }
   if (limit.velocity_correction) {
     filter_attachment_velocities(attachments_, b.max_factor, b.max_slack, state);
-    stats.velocity_sweeps =
-        filter_spring_velocities(model, inv_mass, b, h, limit.iterations, state);
+    // after a global projection of the positions the velocities are filtered globally too:
+    // Gauss–Seidel sweeps that stopped by their tolerance still left a cloth hung from two
+    // corners cycling between the same three states (a lift by the projection every step)
+    if (stats.position_projections > 0) {
+      stats.velocity_solved_together = filter_together(model, inv_mass, b, h, true, state);
+    } else {
+      const auto [sweeps, stopped] =
+          filter_spring_velocities(model, inv_mass, b, h, limit.iterations, state);
+      stats.velocity_sweeps = sweeps;
+      if (!stopped && limit.projection_iterations > 0) {
+        stats.velocity_solved_together = filter_together(model, inv_mass, b, h, false, state);
+      }
+    }
   }
   return stats;
 }
