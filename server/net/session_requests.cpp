@@ -125,6 +125,9 @@ void handle_get_stats(Session& session, std::uint64_t id) {
         entry.set_max_strain(body.max_strain);
         entry.set_volume_ratio(body.volume_ratio);
         entry.set_kinetic_energy(body.kinetic_energy);
+        entry.set_substeps(static_cast<std::uint32_t>(body.substeps));
+        entry.set_rescued_steps(body.rescued_steps);
+        entry.set_max_compression(body.max_compression);
       }
       add_stage_times("cloth", ClothSystem::kStages, runner.cloth_profile, out);
       add_stage_times("solids", SolidSystem::kStages, runner.solid_profile, out);

@@ -16,6 +16,9 @@ struct BodyStats {
   Real max_strain = 0;     ///< cloth: ClothBody::max_strain
   Real volume_ratio = 1;   ///< solid: volume / rest volume
   Real kinetic_energy = 0;
+  int substeps = 1;  ///< World::substeps: a rescue's or the stable step's
+  std::uint64_t rescued_steps = 0;
+  Real max_compression = 0;  ///< cloth: ClothBody::max_compression
 };
 
 /// Every cloth and solid of `world`, in id order.

@@ -1,11 +1,19 @@
 #include "runtime/health_events.hpp"
 
+#include <algorithm>
 #include <utility>
 
 namespace felt {
 
 void HealthEvents::count(const StepReport& report) {
-  if (report.flags & kStepRescued) ++rescued_.total;
+  if (report.flags & kStepRescued) {
+    ++rescued_.total;
+    // every body rescued since the last event, once
+    for (BodyId id : report.rescued_bodies) {
+      const auto at = std::lower_bound(rescued_.bodies.begin(), rescued_.bodies.end(), id);
+      if (at == rescued_.bodies.end() || *at != id) rescued_.bodies.insert(at, id);
+    }
+  }
   if (report.flags & kStepUnrecoverable) {
     ++unrecoverable_.total;
     unrecoverable_.bodies = report.unrecoverable_bodies;

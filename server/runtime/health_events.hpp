@@ -35,7 +35,8 @@ class HealthEvents {
   struct Troubled {
     std::uint64_t total = 0;
     std::uint64_t reported = 0;
-    std::vector<BodyId> bodies;  ///< unrecoverable steps only
+    /// unrecoverable: the bodies of the last step; rescued: every body since the last event
+    std::vector<BodyId> bodies;
     std::optional<Clock::time_point> last_event;
   };
 

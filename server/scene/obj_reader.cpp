@@ -5,6 +5,8 @@
 #include <sstream>
 #include <vector>
 
+#include "core/math/bounds.hpp"
+
 namespace felt {
 namespace {
 
@@ -50,6 +52,8 @@ std::expected<TriangleMesh, std::string> read_obj(std::istream& in, const std::s
     if (tag == "v") {
       Vec3 p;
       if (!(fields >> p.x() >> p.y() >> p.z()) || !p.allFinite()) return error("bad vertex");
+      // as a scene's coordinates: 1e300 loaded, and its masses and energies became NaN
+      if (!within_bounds(p)) return error("vertex coordinate outside ±1e6 m");
       mesh.positions.push_back(p);
       uv_of_vertex.push_back(-1);
     } else if (tag == "vt") {

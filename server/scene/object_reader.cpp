@@ -1,5 +1,7 @@
 #include "scene/object_reader.hpp"
 
+#include <sstream>
+
 #include "scene/scene_directory.hpp"
 
 namespace felt::scene_json {
@@ -10,6 +12,12 @@ namespace felt::scene_json {
 
 std::string child(const std::string& path, std::string_view key) {
   return path.empty() ? std::string(key) : path + "." + std::string(key);
+}
+
+std::string ObjectReader::between(Real min, Real max, std::string_view unit) {
+  std::ostringstream text;
+  text << "must be between " << min << " and " << max << (unit.empty() ? "" : " ") << unit;
+  return text.str();
 }
 
 std::string element(const std::string& path, std::size_t index) {

@@ -71,6 +71,16 @@ class ObjectReader {
     return x;
   }
 
+  /// A number within [min, max] (the message gives both, in `unit`).
+  Real ranged(std::string_view key, Real fallback, Real min, Real max,
+              std::string_view unit = "") const {
+    const Real x = number(key, fallback);
+    if (!(x >= min && x <= max)) fail(path_of(key), between(min, max, unit));
+    return x;
+  }
+  /// "must be between 1e-06 and 1000000 m"
+  static std::string between(Real min, Real max, std::string_view unit);
+
   Real non_negative(std::string_view key, Real fallback) const {
     const Real x = number(key, fallback);
     if (x < 0) fail(path_of(key), "must be >= 0");

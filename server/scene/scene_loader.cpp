@@ -13,6 +13,7 @@
 #include "core/cloth/mesh_cloth.hpp"
 #include "core/integrate/xpbd_integrator.hpp"
 #include "scene/haptics_reader.hpp"
+#include "scene/health_reader.hpp"
 #include "scene/obj_reader.hpp"
 #include "scene/object_reader.hpp"
 #include "scene/solid_reader.hpp"
@@ -25,6 +26,11 @@ using namespace scene_json;
 
 // Particles per body are capped so that a typo cannot ask for terabytes.
 constexpr std::uint32_t kMaxGridSide = 2048;
+// A cloth's mass, kg, and its springs' constants: wide enough for a silk scarf and a tarpaulin
+// of lead, narrow enough that m, k and c stay where their products and quotients are finite.
+constexpr Real kMinMass = 1e-6, kMaxMass = 1e6;
+constexpr Real kMinStiffness = 1e-6, kMaxStiffness = 1e9;  // N/m
+constexpr Real kMaxDamping = 1e6;                          // N·s/m
 
 GridClothSpec read_grid(const ObjectReader& reader) {
   const ObjectReader grid(reader.at("grid"), reader.path_of("grid"),
@@ -53,7 +59,7 @@ ClothParams read_springs(const ObjectReader& body) {
   params.spring(SpringKind::kStructural) = {true, 200, 0.05};
   params.spring(SpringKind::kShear) = {true, 50, 0.02};
   params.spring(SpringKind::kBend) = {true, 5, 0.005};
-  params.drag = body.non_negative("drag", 0.005);
+  params.drag = body.ranged("drag", 0.005, 0, kMaxDamping, "N·s/m");
   params.thickness = body.non_negative("thickness", params.thickness);
   params.self_collision = body.boolean("self_collision", params.self_collision);
   if (params.self_collision && params.thickness == 0) {
@@ -99,8 +105,8 @@ ClothParams read_springs(const ObjectReader& body) {
     const ObjectReader spring(springs.at(key), springs.path_of(key),
                               {"stiffness", "damping", "enabled"});
     SpringParams& sp = params.spring(kind);
-    sp.stiffness = spring.positive("stiffness", sp.stiffness);
-    sp.damping = spring.non_negative("damping", sp.damping);
+    sp.stiffness = spring.ranged("stiffness", sp.stiffness, kMinStiffness, kMaxStiffness, "N/m");
+    sp.damping = spring.ranged("damping", sp.damping, 0, kMaxDamping, "N·s/m");
     sp.enabled = spring.boolean("enabled", sp.enabled);
   }
   return params;
@@ -187,8 +193,8 @@ void read_anchors(const ObjectReader& body, ClothBody& cloth) {
     if (!a.has("particle")) fail(a.path_of("particle"), "is required");
     anchor.particle = a.count("particle", 0, 0, n - 1);
     anchor.target = a.vec3("target", cloth.state().x[anchor.particle]);
-    anchor.stiffness = a.positive("stiffness", 100);
-    anchor.damping = a.non_negative("damping", 0);
+    anchor.stiffness = a.ranged("stiffness", 100, kMinStiffness, kMaxStiffness, "N/m");
+    anchor.damping = a.ranged("damping", 0, 0, kMaxDamping, "N·s/m");
     cloth.set_anchor(anchor);
   }
 }
@@ -274,7 +280,7 @@ ClothBody read_cloth(const ObjectReader& body, std::size_t index, const SceneLoa
   if (body.has("grid") == body.has("mesh")) {
     fail(body.path_of("grid"), "a cloth needs exactly one of \"grid\" and \"mesh\"");
   }
-  const Real total_mass = body.positive("mass", 1);
+  const Real total_mass = body.ranged("mass", 1, kMinMass, kMaxMass, "kg");
   std::optional<GridClothSpec> grid;
   std::shared_ptr<const ClothModel> model;
   if (body.has("grid")) {
@@ -362,21 +368,29 @@ void read_bodies(const json& bodies, const SceneLoadOptions& options, Real time_
 }
 
 Scene read_scene(const json& document, const SceneLoadOptions& options) {
-  const ObjectReader root(
-      document, "",
-      {"name", "time_step", "gravity", "max_speed", "haptics", "colliders", "solids", "bodies"});
+  const ObjectReader root(document, "",
+                          {"name", "time_step", "gravity", "max_speed", "health", "haptics",
+                           "colliders", "solids", "bodies"});
   WorldSettings settings;
   settings.time_step = root.positive("time_step", settings.time_step);
   if (settings.time_step > 0.1) fail(root.path_of("time_step"), "must be at most 0.1 s");
   // no shorter: at 1e-9 s, a millisecond of the scene was a million steps before any frame
   if (settings.time_step < 1e-6) fail(root.path_of("time_step"), "must be at least 1e-6 s");
   settings.gravity = root.vec3("gravity", settings.gravity);
-  settings.max_speed = root.positive("max_speed", settings.max_speed);
+  if (root.has("max_speed")) settings.max_speed = root.ranged("max_speed", 0, 1e-3, 1e6, "m/s");
+  if (root.has("health")) {
+    read_health(
+        ObjectReader(root.at("health"), root.path_of("health"),
+                     {"energy_check", "energy_tolerance", "energy_window", "max_energy_growth",
+                      "speed_growth", "max_substep_doublings", "relax_after", "stable_substeps"}),
+        settings);
+  }
   SolidStepSettings solid_settings;
   if (root.has("solids")) {
     solid_settings = read_solid_settings(
         ObjectReader(root.at("solids"), root.path_of("solids"),
-                     {"max_step", "contact_iterations", "min_depth", "max_speed", "friction"}));
+                     {"max_step", "contact_iterations", "min_depth", "max_speed", "friction"}),
+        settings.time_step);
   }
 
   Scene scene(root.name("name", "unnamed"), World(settings, solid_settings));

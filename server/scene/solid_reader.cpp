@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <sstream>
 #include <utility>
 
 #include "core/geometry/procedural_surfaces.hpp"
@@ -221,14 +222,21 @@ SolidBody read_solid(const ObjectReader& body, std::size_t index,
   return solid;
 }
 
-SolidStepSettings read_solid_settings(const ObjectReader& solids) {
+SolidStepSettings read_solid_settings(const ObjectReader& solids, Real time_step) {
   SolidStepSettings s;
   s.max_step = solids.positive("max_step", s.max_step);
   if (s.max_step > 0.015) fail(solids.path_of("max_step"), "must be at most 0.015 s");
+  // 1e-9 s made a million substeps of every step and stalled the server
+  if (time_step / s.max_step > kMaxSubsteps) {
+    std::ostringstream text;
+    text << "must be at least the time step / " << kMaxSubsteps << " = " << time_step / kMaxSubsteps
+         << " s";
+    fail(solids.path_of("max_step"), text.str());
+  }
   s.contact_iterations =
       static_cast<int>(solids.count("contact_iterations", s.contact_iterations, 0, 16));
   s.min_depth = solids.non_negative("min_depth", s.min_depth);
-  s.max_speed = solids.positive("max_speed", s.max_speed);
+  if (solids.has("max_speed")) s.max_speed = solids.ranged("max_speed", 0, 1e-3, 1e6, "m/s");
   const std::string friction = solids.string("friction", "coulomb");
   if (friction == "coulomb") {
     s.friction = SolidFriction::kRelativeCoulomb;

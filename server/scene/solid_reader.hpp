@@ -18,7 +18,7 @@ SolidBody read_solid(const ObjectReader& body, std::size_t index,
                      const std::filesystem::path& asset_root, Real time_step,
                      std::size_t& particles_left);
 
-/// The scene's "solids" settings of the contact pipeline.
-SolidStepSettings read_solid_settings(const ObjectReader& solids);
+/// The scene's "solids" settings of the contact pipeline, for a scene stepping `time_step`.
+SolidStepSettings read_solid_settings(const ObjectReader& solids, Real time_step);
 
 }  // namespace felt::scene_json

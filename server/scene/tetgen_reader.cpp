@@ -8,6 +8,8 @@
 #include <sstream>
 #include <vector>
 
+#include "core/math/bounds.hpp"
+
 namespace felt {
 namespace {
 
@@ -126,6 +128,9 @@ std::expected<std::vector<Vec3>, std::string> read_nodes(DataLines& lines, long&
                                        return lines.error("bad coordinate \"" + field + "\"");
                                    }
                                    if (!p.allFinite()) return lines.error("non-finite coordinate");
+                                   if (!within_bounds(p)) {
+                                     return lines.error("coordinate outside ±1e6 m");
+                                   }
                                    nodes.push_back(p);
                                    return {};
                                  });

@@ -53,6 +53,14 @@ TEST(ObjReader, ErrorsNameTheLine) {
   EXPECT_EQ(parse("v nan 0 0\n").error(), "test.obj:1: bad vertex");
 }
 
+TEST(ObjReader, CoordinatesBeyondAMillionMetresAreRefusedWithTheirLine) {
+  // 1e300 is a finite double: it loaded, and the cloth's masses and energies became NaN
+  EXPECT_EQ(parse("v 0 0 0\nv 1e300 0 0\nv 0 1 0\nf 1 2 3\n").error(),
+            "test.obj:2: vertex coordinate outside ±1e6 m");
+  EXPECT_EQ(parse("v 0 0 -1000001\n").error(), "test.obj:1: vertex coordinate outside ±1e6 m");
+  EXPECT_TRUE(parse("v 0 0 0\nv 1e6 0 0\nv 0 -1e6 0\nf 1 2 3\n"));
+}
+
 TEST(ObjReader, TheBunnyIsAClosedManifold) {
   const auto mesh = read_obj_file(std::string(FELT_SCENE_DIR) + "/meshes/bunny.obj");
   ASSERT_TRUE(mesh) << mesh.error();

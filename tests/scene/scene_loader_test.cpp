@@ -1,5 +1,7 @@
 #include "scene/scene_loader.hpp"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -66,7 +68,8 @@ TEST(SceneLoader, AppliesDefaultsAndGivenValues) {
 TEST(SceneLoader, NamesThePathOfTheBadValue) {
   json doc = minimal_cloth();
   doc["bodies"][0]["springs"]["shear"]["stiffness"] = -1;
-  EXPECT_EQ(error_of(doc), "bodies[0].springs.shear.stiffness: must be > 0");
+  EXPECT_EQ(error_of(doc),
+            "bodies[0].springs.shear.stiffness: must be between 1e-06 and 1e+09 N/m");
 
   doc = minimal_cloth();
   doc["bodies"][0]["grid"]["nx"] = 1;
@@ -329,6 +332,54 @@ TEST(SceneLoader, ReadsTheStretchLimitsProjectionIterationsWithinTheirRange) {
   doc["bodies"][0]["stretch_limit"]["projection_iterations"] = 101;
   EXPECT_EQ(error_of(doc),
             "bodies[0].stretch_limit.projection_iterations: must be between 0 and 100");
+}
+
+}  // namespace
+}  // namespace felt
+
+namespace felt {
+namespace {
+
+TEST(SceneLoader, MassesAndSpringConstantsHaveRanges) {
+  json doc = minimal_cloth();
+  doc["bodies"][0]["mass"] = 1e300;
+  EXPECT_EQ(error_of(doc), "bodies[0].mass: must be between 1e-06 and 1e+06 kg");
+  doc = minimal_cloth();
+  doc["bodies"][0]["springs"]["bend"]["damping"] = 1e12;
+  EXPECT_EQ(error_of(doc), "bodies[0].springs.bend.damping: must be between 0 and 1e+06 N·s/m");
+  doc = minimal_cloth();
+  doc["bodies"][0]["drag"] = -1;
+  EXPECT_EQ(error_of(doc), "bodies[0].drag: must be between 0 and 1e+06 N·s/m");
+}
+
+TEST(SceneLoader, HealthKeysAreReadAndBounded) {
+  json doc = minimal_cloth();
+  doc["max_speed"] = 30;
+  doc["health"] = {{"energy_tolerance", 0.5},  {"energy_window", 2},
+                   {"speed_growth", 8},        {"relax_after", 3},
+                   {"stable_substeps", false}, {"max_substep_doublings", 2},
+                   {"max_energy_growth", 4}};
+  const auto scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  const WorldSettings& s = scene->world.settings();
+  EXPECT_EQ(s.max_speed, 30);
+  EXPECT_EQ(s.health.energy_tolerance, 0.5);
+  EXPECT_EQ(s.health.energy_window, 2);
+  EXPECT_EQ(s.health.speed_growth, 8);
+  EXPECT_EQ(s.health.relax_after, 3);
+  EXPECT_FALSE(s.health.stable_substeps);
+  EXPECT_EQ(s.max_substep_doublings, 2);
+  EXPECT_EQ(s.max_energy_growth, 4);
+  EXPECT_EQ(scene->world.cloth_system().settings().health.energy_tolerance, 0.5);
+
+  doc["health"] = {{"energy_check", false}};
+  EXPECT_TRUE(std::isinf(load_scene(doc)->world.settings().health.energy_tolerance));
+  doc["health"] = {{"energy_tolerance", std::nan("")}};
+  EXPECT_EQ(error_of(doc), "health.energy_tolerance: must be finite");
+  doc["health"] = {{"speed_growth", 1}};
+  EXPECT_EQ(error_of(doc), "health.speed_growth: must be between 1.1 and 1e+06");
+  doc["health"] = {{"max_substep_doublings", 11}};
+  EXPECT_EQ(error_of(doc), "health.max_substep_doublings: must be between 0 and 10");
 }
 
 }  // namespace

@@ -205,6 +205,11 @@ TEST(SolidReader, SolidSettings) {
   EXPECT_EQ(scene->world.solids().settings().friction, SolidFriction::kThesis);
   doc["solids"]["max_step"] = 0.02;
   EXPECT_NE(error_of(doc).find("solids.max_step: must be at most 0.015 s"), std::string::npos);
+  // a million substeps a step stalled the server: at most 2000, like a too stiff body
+  doc["solids"]["max_step"] = 1e-9;
+  EXPECT_NE(error_of(doc).find("solids.max_step: must be at least the time step / 2000 = 5e-07 s"),
+            std::string::npos)
+      << error_of(doc);
 }
 
 // A box lattice's edges are sharp (60°) by default, a voxelized shape's staircase is smooth

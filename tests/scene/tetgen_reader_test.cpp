@@ -91,6 +91,8 @@ TEST(TetgenReader, ErrorsNameTheFileAndLine) {
   EXPECT_EQ(parse("4 3 0 1\n1 0 0 0\n", tets).error(), "m.node:2: expected 5 columns, found 4");
   EXPECT_EQ(parse("4 3 0 0\n1 0 0 0\n2 1 0 nan\n", tets).error(),
             "m.node:3: non-finite coordinate");
+  EXPECT_EQ(parse("4 3 0 0\n1 0 0 0\n2 1 0 1e300\n", tets).error(),
+            "m.node:3: coordinate outside ±1e6 m");
   EXPECT_EQ(parse("4 3 0 0\n1 0 0 0\n2 1 0 0.5x\n", tets).error(),
             "m.node:3: bad coordinate \"0.5x\"");
   EXPECT_EQ(parse("4 3 0 0\n1 0 0 0\n3 1 0 0\n", tets).error(),

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/math/check.hpp"
 
@@ -189,6 +190,11 @@ bool ClothBody::distance_constraints(std::vector<DistanceConstraint>& constraint
   return !constraints.empty();
 }
 
+void ClothBody::applied_forces(Real t, std::span<Vec3> f) const {
+  std::copy(external_force_.begin(), external_force_.end(), f.begin());
+  if (params_.wind.enabled) add_wind_forces(state_.x, state_.v, t, f);
+}
+
 Real ClothBody::kinetic_energy() const {
   Real energy = 0;
   for (std::size_t p = 0; p < state_.size(); ++p) {
@@ -219,13 +225,27 @@ Real ClothBody::elastic_energy() const {
   return energy;
 }
 
-Real ClothBody::max_strain() const {
-  Real strain = 0;
+ClothBody::StrainRange ClothBody::strain_range() const {
+  StrainRange range{-std::numeric_limits<Real>::infinity(), std::numeric_limits<Real>::infinity()};
+  bool any = false;
   for (const Spring& s : model_->springs) {
     if (!is_limited(s)) continue;
-    strain = std::max(strain, (state_.x[s.i] - state_.x[s.j]).norm() / s.rest_length - 1);
+    const Real strain = (state_.x[s.i] - state_.x[s.j]).norm() / s.rest_length - 1;
+    // std::max and std::min keep the first of a NaN comparison: a NaN would vanish
+    if (std::isnan(strain)) return {strain, strain};
+    range.largest = std::max(range.largest, strain);
+    range.smallest = std::min(range.smallest, strain);
+    any = true;
   }
-  return strain;
+  return any ? range : StrainRange{};
+}
+
+Real ClothBody::max_strain() const {
+  return strain_range().largest;
+}
+
+Real ClothBody::max_compression() const {
+  return -strain_range().smallest;
 }
 
 }  // namespace felt

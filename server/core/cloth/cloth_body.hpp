@@ -108,9 +108,16 @@ class ClothBody final : public DynamicSystem {
   /// −Σ m g·x over all particles, J: zero at the origin, so only its changes mean anything.
   Real gravitational_energy() const;
   const std::vector<Vec3>& external_forces() const { return external_force_; }
+  /// The forces from outside the body that can add energy to it at time t, in the state it is
+  /// in: the external forces and the wind (for the health check's energy balance).
+  void applied_forces(Real t, std::span<Vec3> f) const;
   const Vec3& gravity() const { return gravity_; }
-  /// Largest relative elongation |l|/r − 1 over the structural and shear springs.
+  /// Largest relative elongation |l|/r − 1 over the structural and shear springs: negative
+  /// when all are compressed, NaN when a length is not finite, 0 without such springs.
   Real max_strain() const;
+  /// Largest relative compression 1 − |l|/r over the same springs (negative when all are
+  /// stretched), NaN as max_strain.
+  Real max_compression() const;
 
   // DynamicSystem
   std::span<const Real> inv_mass() const override { return inv_mass_; }
@@ -129,6 +136,12 @@ class ClothBody final : public DynamicSystem {
  private:
   void compute_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real t, std::span<Vec3> f,
                       bool with_springs) const;
+  struct StrainRange {
+    Real largest = 0;
+    Real smallest = 0;
+  };
+  /// The largest and smallest |l|/r − 1 over the structural and shear springs.
+  StrainRange strain_range() const;
   void add_wind_forces(std::span<const Vec3> x, std::span<const Vec3> v, Real t,
                        std::span<Vec3> f) const;
 

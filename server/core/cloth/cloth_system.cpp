@@ -8,9 +8,23 @@
 namespace felt {
 
 std::uint32_t ClothSystem::add_body(ClothBody body) {
+  BodyHealth health;
+  if (!body.state().x.empty()) {
+    Vec3 low = body.state().x[0], high = low;
+    for (const Vec3& x : body.state().x) {
+      low = low.cwiseMin(x);
+      high = high.cwiseMax(x);
+    }
+    health.size = (high - low).norm();
+  }
+  for (Real m : body.model().mass) {
+    health.mass += m;
+    health.lightest = std::min(health.lightest, m);
+  }
   bodies_.push_back(std::move(body));
   self_collision_.emplace_back();
   limiters_.emplace_back();
+  health_.push_back(health);
   energy_valid_ = false;
   return static_cast<std::uint32_t>(bodies_.size() - 1);
 }
@@ -20,42 +34,78 @@ void ClothSystem::remove_body(std::uint32_t index) {
   bodies_.erase(bodies_.begin() + index);
   self_collision_.erase(self_collision_.begin() + index);
   limiters_.erase(limiters_.begin() + index);
+  health_.erase(health_.begin() + index);
   energy_valid_ = false;
+}
+
+Real ClothSystem::mechanical_energy(const ClothBody& body) {
+  return body.kinetic_energy() + body.elastic_energy() + body.gravitational_energy();
+}
+
+Real ClothSystem::energy_scale(std::size_t index) const {
+  const ClothBody& body = bodies_[index];
+  // the floor keeps rounding noise of a weightless body at rest from counting as growth
+  constexpr Real kEnergyFloor = 1e-9;
+  return body.kinetic_energy() + body.elastic_energy() +
+         health_[index].mass * body.gravity().norm() * health_[index].size + kEnergyFloor;
 }
 
 const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider> colliders,
                                         const std::function<void()>& yield_point) {
   stats_.substeps = 1;
   stats_.rescued = false;
+  stats_.rescued_bodies.clear();
   stats_.unrecoverable.clear();
   stats_.profile = {};
   if (!energy_valid_) {
     energy_.resize(bodies_.size());
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
       energy_[b] = bodies_[b].kinetic_energy() + bodies_[b].elastic_energy();
+      health_[b].balance.reset(mechanical_energy(bodies_[b]));
     }
   }
+  const auto relax_steps = static_cast<std::int64_t>(std::ceil(settings_.health.relax_after / h));
+  window_ = std::max(HealthSettings::kMinWindowSteps,
+                     static_cast<int>(std::ceil(settings_.health.energy_window / h)));
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     ClothBody& body = bodies_[b];
     // copy-assignment into equally sized vectors reuses their storage: no allocation
     backup_.x = body.state().x;
     backup_.v = body.state().v;
+    applied_before_.resize(body.state().size());
+    body.applied_forces(t, applied_before_);
+    StepStart start{.energy = energy_[b]};
+    Real acceleration = 0;
+    for (std::size_t p = 0; p < backup_.size(); ++p) {
+      start.speed.fastest = std::max(start.speed.fastest, backup_.v[p].norm());
+      acceleration = std::max(acceleration, applied_before_[p].norm() / body.model().mass[p]);
+    }
+    start.speed.acceleration = body.gravity().norm() + acceleration;
+    start.speed.reachable = std::sqrt(2 * start.energy / health_[b].lightest);
+    StickySubsteps& sticky = health_[b].substeps;
     const RescueOutcome outcome = step_with_rescue(
-        1, settings_.rescue,
-        [&](int substeps) {
-          return attempt(b, t, h, substeps, colliders, energy_[b], yield_point);
-        },
+        sticky.start(relax_steps), settings_.rescue,
+        [&](int substeps) { return attempt(b, t, h, substeps, colliders, start, yield_point); },
         [&] {
           body.state().x = backup_.x;
           body.state().v = backup_.v;
           body.integrator().reset();
+          start.first = false;
         });
-    stats_.rescued = stats_.rescued || outcome.rescued;
-    if (!outcome.ok) {
+    sticky.record(outcome);
+    if (outcome.rescued) {
+      stats_.rescued = true;
+      stats_.rescued_bodies.push_back(static_cast<std::uint32_t>(b));
+      // the growth before the rescue cannot be undone: the balance starts over from here
+      health_[b].balance.reset(mechanical_energy(body));
+    } else if (outcome.ok) {
+      health_[b].balance.accept(mechanical_energy(body), work_, energy_scale(b), window_);
+    } else {
       body.state().x = backup_.x;
       for (Vec3& v : body.state().v) v.setZero();
       body.integrator().reset();
       energy_[b] = body.elastic_energy();
+      health_[b].balance.reset(mechanical_energy(body));
       stats_.unrecoverable.push_back(static_cast<std::uint32_t>(b));
     }
     stats_.substeps = std::max(stats_.substeps, outcome.substeps);
@@ -66,7 +116,7 @@ const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider
 }
 
 bool ClothSystem::attempt(std::size_t index, Real t, Real h, int substeps,
-                          std::span<const Collider> colliders, Real& energy,
+                          std::span<const Collider> colliders, StepStart& start,
                           const std::function<void()>& yield_point) {
   ClothBody& body = bodies_[index];
   const Real dt = h / substeps;
@@ -92,33 +142,53 @@ bool ClothSystem::attempt(std::size_t index, Real t, Real h, int substeps,
           [&] { apply_constraints(body.constraints(), body.state()); });
     if (yield_point) yield_point();
   }
-  return timed(profile, StepStage::kHealth, [&] { return healthy(body, h, energy); });
+  return timed(profile, StepStage::kHealth, [&] { return healthy(index, t, h, start); });
 }
 
-bool ClothSystem::healthy(const ClothBody& body, Real h, Real& energy) const {
+bool ClothSystem::healthy(std::size_t index, Real t, Real h, StepStart& start) {
+  const ClothBody& body = bodies_[index];
   const ParticleState& state = body.state();
-  const Real max_speed_sq = settings_.max_speed * settings_.max_speed;
+  const HealthSettings& health = settings_.health;
+  const Real max_speed = scaled_speed_limit(start.speed, health_[index].size, h,
+                                            health.speed_growth, settings_.max_speed);
+  const Real max_speed_sq = max_speed * max_speed;
+  applied_after_.resize(state.size());
+  body.applied_forces(t + h, applied_after_);
   // work by gravity and external forces over the step, estimated from the displacement and
   // from the mean of the start and end velocities, whichever is larger: the first misses the
   // energy explicit Euler gains in a step from rest (positions have not moved yet), the second
   // misjudges a step in which substeps turned a velocity around
   Real work_by_displacement = 0;
   Real work_by_velocity = 0;
+  // the work of the applied forces alone (gravity's is in the mechanical energy), by the
+  // trapezoidal rule: exact for a force constant over the step
+  Real applied_work = 0;
   for (std::size_t p = 0; p < state.size(); ++p) {
     if (!state.x[p].allFinite()) return false;
     const Real speed_sq = state.v[p].squaredNorm();
     if (!std::isfinite(speed_sq) || speed_sq > max_speed_sq) return false;
+    const Vec3 displacement = state.x[p] - backup_.x[p];
     const Vec3 force = body.model().mass[p] * body.gravity() + body.external_forces()[p];
-    work_by_displacement += force.dot(state.x[p] - backup_.x[p]);
+    work_by_displacement += force.dot(displacement);
     work_by_velocity += force.dot(0.5 * h * (state.v[p] + backup_.v[p]));
+    applied_work += 0.5 * (applied_before_[p] + applied_after_[p]).dot(displacement);
   }
   const Real work = std::max({work_by_displacement, work_by_velocity, Real{0}});
   const Real energy_after = body.kinetic_energy() + body.elastic_energy();
   const Real growth = settings_.max_energy_growth;
   // the floor keeps rounding noise of a body at rest from counting as growth
   constexpr Real kEnergyFloor = 1e-9;
-  if (energy_after > growth * (energy + work) + kEnergyFloor) return false;
-  energy = energy_after;
+  if (energy_after > growth * (start.energy + work) + kEnergyFloor) return false;
+  // slow growth, judged on the first attempt only: a window cannot judge a retried step, and
+  // the balance starts over after it
+  const EnergyBalance& balance = health_[index].balance;
+  if (start.first && !balance.within(balance.budget_after(
+                                         energy_after + body.gravitational_energy(), applied_work),
+                                     energy_scale(index), health.energy_tolerance, window_)) {
+    return false;
+  }
+  work_ = applied_work;
+  energy_[index] = energy_after;
   return true;
 }
 

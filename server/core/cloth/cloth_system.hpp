@@ -1,34 +1,43 @@
 #pragma once
 // All the cloths of a world and the per-step pipeline that moves each of them: the integrator,
 // stretch limiting, the colliders, self-collision and the particle constraints, each (sub)step,
-// then the health check, with rollback and substeps for a step that fails it.
+// then the health check, with rollback and substeps for a step that fails it; a body keeps the
+// substeps a rescue needed (StickySubsteps).
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <span>
 #include <vector>
 
 #include "core/cloth/cloth_body.hpp"
 #include "core/cloth/cloth_self_collision.hpp"
 #include "core/collision/collider.hpp"
+#include "core/step/energy_balance.hpp"
+#include "core/step/health_settings.hpp"
 #include "core/step/step_profile.hpp"
+#include "core/step/sticky_substeps.hpp"
 #include "core/step/substep_rescue.hpp"
 
 namespace felt {
 
 struct ClothStepSettings {
   /// m/s; a particle faster than this is taken as an exploding state and the step is retried
-  Real max_speed = 100;
+  /// (besides the speed limit scaled from the scene, HealthSettings::speed_growth)
+  Real max_speed = std::numeric_limits<Real>::infinity();
   /// A step after which kinetic plus elastic energy exceeds this factor times what it was plus
   /// the work gravity and external forces did is taken as exploding (an unstable mode grows
   /// geometrically; a passive cloth can only lose energy).
   Real max_energy_growth = 2;
   RescuePolicy rescue;
+  HealthSettings health{};
 };
 
 struct ClothStepStats {
   int substeps = 1;      ///< the most substeps any cloth needed
   bool rescued = false;  ///< some cloth's step failed and was redone with substeps
+  /// cloths (indices) whose step was rescued; no allocation while it stays empty
+  std::vector<std::uint32_t> rescued_bodies;
   /// cloths (indices) that could not be rescued: rolled back and stopped; no allocation while
   /// it stays empty
   std::vector<std::uint32_t> unrecoverable;
@@ -71,14 +80,36 @@ class ClothSystem {
   const ClothStepStats& step(Real t, Real h, std::span<const Collider> colliders,
                              const std::function<void()>& yield_point = {});
   const ClothStepStats& last_stats() const { return stats_; }
+  /// The substeps cloth `index` steps with now, and how many of its steps were rescued.
+  const StickySubsteps& substeps(std::uint32_t index) const { return health_[index].substeps; }
 
  private:
+  /// What the health check keeps of one cloth between steps.
+  struct BodyHealth {
+    EnergyBalance balance;
+    StickySubsteps substeps;
+    Real size = 0;  ///< m, the diagonal of its bounding box when added
+    Real mass = 0;  ///< kg
+    Real lightest = std::numeric_limits<Real>::infinity();  ///< kg, of a particle
+  };
+  /// The energies and forces the health check compares a step's end with.
+  struct StepStart {
+    Real energy = 0;  ///< kinetic + elastic
+    SpeedSources speed{};
+    bool first = true;  ///< the attempt is the first of the step, not a retry
+  };
+
   /// Steps cloth `index` over [t, t + h] in `substeps` equal parts; false when unhealthy.
   /// `energy` holds the body's kinetic plus elastic energy at the start, and at the end when
   /// the step was healthy.
   bool attempt(std::size_t index, Real t, Real h, int substeps, std::span<const Collider> colliders,
-               Real& energy, const std::function<void()>& yield_point);
-  bool healthy(const ClothBody& body, Real h, Real& energy) const;
+               StepStart& start, const std::function<void()>& yield_point);
+  bool healthy(std::size_t index, Real t, Real h, StepStart& start);
+  /// Cloth `index`'s kinetic and elastic energy plus its weight times its size, J: what the
+  /// energy balance's tolerance is a fraction of.
+  Real energy_scale(std::size_t index) const;
+  /// Kinetic, elastic and gravitational energy.
+  static Real mechanical_energy(const ClothBody& body);
 
   ClothStepSettings settings_;
   std::vector<ClothBody> bodies_;
@@ -88,7 +119,12 @@ class ClothSystem {
   /// starting energy unless bodies() was handed out in between
   std::vector<Real> energy_;
   bool energy_valid_ = false;
+  std::vector<BodyHealth> health_;  ///< per cloth
   ParticleState backup_;
+  /// applied forces (external and wind) at the start of a step, and at its end
+  std::vector<Vec3> applied_before_, applied_after_;
+  Real work_ = 0;   ///< by the applied forces over the attempt last checked
+  int window_ = 1;  ///< steps in an energy window at the step length of the last step
   ClothStepStats stats_;
 };
 

@@ -164,6 +164,7 @@ class SolidBody {
   /// substep.
   void add_external_force(std::uint32_t n, const Vec3& force) { external_force_[n] += force; }
   void clear_external_forces();
+  const std::vector<Vec3>& external_forces() const { return external_force_; }
 
   /// Elastic and damping forces of the model at the current positions and velocities,
   /// written (not added) into f. Shape matching reports the force of its goal springs.

@@ -5,6 +5,7 @@
 
 #include "core/math/check.hpp"
 #include "core/solids/solid_collider_contact.hpp"
+#include "core/step/energy_balance.hpp"
 #include "core/step/substep_rescue.hpp"
 
 namespace felt {
@@ -24,6 +25,14 @@ SolidSystem::SolidSystem(SolidStepSettings settings) {
 
 std::uint32_t SolidSystem::add_body(SolidBody body) {
   bodies_.push_back(std::move(body));
+  Vec3 low = Vec3::Constant(std::numeric_limits<Real>::max()), high = -low;
+  for (const SolidBody& b : bodies_) {
+    for (const Vec3& x : b.positions()) {
+      low = low.cwiseMin(x);
+      high = high.cwiseMax(x);
+    }
+  }
+  size_ = (high - low).norm();
   // thesis 2 §2.2: the grid cell is the mean edge length
   detector_.set_cell_size(mean_rest_edge_length(bodies_));
   return static_cast<std::uint32_t>(bodies_.size() - 1);
@@ -58,13 +67,32 @@ const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
   Real longest = settings_.max_step;
   for (const SolidBody& body : bodies_) longest = std::min(longest, body.stable_time_step());
   // the tolerance keeps a step of exactly k·max_step from rounding up to k + 1 substeps
-  int substeps = std::max(1, static_cast<int>(std::ceil(h / longest - 1e-9)));
+  const int stable = std::max(1, static_cast<int>(std::ceil(h / longest - 1e-9)));
+  const int substeps = std::max(
+      stable,
+      sticky_.start(static_cast<std::int64_t>(std::ceil(settings_.health.relax_after / h))));
 
+  SpeedSources speed{.acceleration = gravity.norm()};
   saved_.resize(bodies_.size());
-  for (std::size_t b = 0; b < bodies_.size(); ++b) bodies_[b].save_step_state(saved_[b]);
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    SolidBody& body = bodies_[b];
+    body.save_step_state(saved_[b]);
+    for (const Vec3& v : body.velocities()) speed.fastest = std::max(speed.fastest, v.norm());
+    const Real node_mass = body.material().node_mass;
+    for (const Vec3& f : body.external_forces()) {
+      speed.acceleration = std::max(speed.acceleration, gravity.norm() + f.norm() / node_mass);
+    }
+    speed.reachable =
+        std::max(speed.reachable,
+                 std::sqrt(2 * (body.kinetic_energy() + body.elastic_energy()) / node_mass));
+  }
+  const Real max_speed =
+      scaled_speed_limit(speed, size_, h, settings_.health.speed_growth, settings_.max_speed);
   const RescueOutcome outcome = step_with_rescue(
-      substeps, kRescue, [&](int n) { return attempt(h, n, gravity, colliders, yield_point); },
+      substeps, kRescue,
+      [&](int n) { return attempt(h, n, gravity, colliders, max_speed, yield_point); },
       [&] { restore(); });
+  sticky_.record(outcome);
   stats_.rescued = outcome.rescued;
   if (!outcome.ok) {
     restore();
@@ -80,7 +108,7 @@ const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
 }
 
 bool SolidSystem::attempt(Real h, int substeps, const Vec3& gravity,
-                          std::span<const Collider> colliders,
+                          std::span<const Collider> colliders, Real max_speed,
                           const std::function<void()>& yield_point) {
   const Real substep_length = h / substeps;
   StepProfile& profile = stats_.profile;
@@ -89,10 +117,11 @@ bool SolidSystem::attempt(Real h, int substeps, const Vec3& gravity,
       for (SolidBody& body : bodies_) body.advance(substep_length, gravity);
     });
     // a non-finite node must not reach the spatial hash
-    if (!timed(profile, StepStage::kHealth, [&] { return healthy(false); })) return false;
+    if (!timed(profile, StepStage::kHealth, [&] { return healthy(false, max_speed); }))
+      return false;
     if (yield_point) yield_point();
     substep(substep_length, gravity, colliders);
-    if (!timed(profile, StepStage::kHealth, [&] { return healthy(true); })) return false;
+    if (!timed(profile, StepStage::kHealth, [&] { return healthy(true, max_speed); })) return false;
     if (yield_point) yield_point();
   }
   return true;
@@ -121,8 +150,8 @@ void SolidSystem::substep(Real h, const Vec3& gravity, std::span<const Collider>
   }
 }
 
-bool SolidSystem::healthy(bool check_speed) const {
-  const Real max_speed_sq = settings_.max_speed * settings_.max_speed;
+bool SolidSystem::healthy(bool check_speed, Real max_speed) const {
+  const Real max_speed_sq = max_speed * max_speed;
   for (const SolidBody& body : bodies_) {
     for (const Vec3& x : body.positions()) {
       if (!x.allFinite()) return false;

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -13,7 +14,9 @@
 #include "core/solids/penetration_depth.hpp"
 #include "core/solids/solid_body.hpp"
 #include "core/solids/solid_collision_detection.hpp"
+#include "core/step/health_settings.hpp"
 #include "core/step/step_profile.hpp"
+#include "core/step/sticky_substeps.hpp"
 
 namespace felt {
 
@@ -22,8 +25,10 @@ struct SolidStepSettings {
   int contact_iterations = 3;  ///< pressure comparisons after the first half step (§3.3 h)
   Real min_depth = 1e-6;       ///< m; shallower penetration depths are taken as zero (§3.3 e)
   SolidFriction friction = SolidFriction::kRelativeCoulomb;  ///< between bodies
-  /// m/s; a node faster than this after a step is taken as an exploding state
-  Real max_speed = 100;
+  /// m/s; a node faster than this after a step is taken as an exploding state, besides the
+  /// limit scaled from the scene (HealthSettings::speed_growth). None by default.
+  Real max_speed = std::numeric_limits<Real>::infinity();
+  HealthSettings health{};  ///< the world's (WorldSettings::health)
 };
 
 struct SolidStepStats {
@@ -67,14 +72,17 @@ class SolidSystem {
   const SolidStepStats& step(Real h, const Vec3& gravity, std::span<const Collider> colliders,
                              const std::function<void()>& yield_point = {});
   const SolidStepStats& last_stats() const { return stats_; }
+  /// The substeps a rescue left the solids with (they step together) and how many of their
+  /// steps were rescued.
+  const StickySubsteps& substeps() const { return sticky_; }
 
  private:
   /// Runs `substeps` substeps of length h; false as soon as the state is not healthy.
   bool attempt(Real h, int substeps, const Vec3& gravity, std::span<const Collider> colliders,
-               const std::function<void()>& yield_point);
+               Real max_speed, const std::function<void()>& yield_point);
   void substep(Real h, const Vec3& gravity, std::span<const Collider> colliders);
-  /// Every position finite and, when `check_speed`, every velocity under max_speed.
-  bool healthy(bool check_speed) const;
+  /// Every position finite and, when `check_speed`, every speed under `max_speed`.
+  bool healthy(bool check_speed, Real max_speed) const;
   void restore();
 
   SolidStepSettings settings_;
@@ -86,6 +94,8 @@ class SolidSystem {
   std::vector<PenetrationContact> contacts_;
   std::vector<SolidBody::StepState> saved_;  ///< per body, the state before the step
   SolidStepStats stats_;
+  StickySubsteps sticky_;
+  Real size_ = 0;  ///< m, the diagonal of the bodies' bounding box when the last was added
 };
 
 }  // namespace felt

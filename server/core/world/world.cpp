@@ -6,11 +6,21 @@
 
 namespace felt {
 
+namespace {
+
+SolidStepSettings with_health(SolidStepSettings solid_settings, const HealthSettings& health) {
+  solid_settings.health = health;
+  return solid_settings;
+}
+
+}  // namespace
+
 World::World(WorldSettings settings, SolidStepSettings solid_settings)
     : settings_(settings),
       cloths_(ClothStepSettings{settings.max_speed, settings.max_energy_growth,
-                                RescuePolicy{.max_doublings = settings.max_substep_doublings}}),
-      solids_(solid_settings) {}
+                                RescuePolicy{.max_doublings = settings.max_substep_doublings},
+                                settings.health}),
+      solids_(with_health(solid_settings, settings.health)) {}
 
 namespace {
 
@@ -179,6 +189,12 @@ void World::remove_surface_anchor(BodyId id, std::uint32_t vertex) {
   }
 }
 
+const StickySubsteps& World::substeps(BodyId id) const {
+  const BodyRef& ref = body_ref(id);
+  FELT_CHECK(ref.kind != BodyRef::Kind::kCollider);
+  return ref.kind == BodyRef::Kind::kCloth ? cloths_.substeps(ref.index) : solids_.substeps();
+}
+
 void World::set_step_count(std::uint64_t steps) {
   step_count_ = steps;
   time_ = static_cast<Real>(step_count_) * settings_.time_step;
@@ -192,6 +208,8 @@ StepReport World::step(const std::function<void()>& yield_point) {
   const ClothStepStats& cloth =
       cloths_.step(time_, settings_.time_step, step_colliders_, yield_point);
   if (cloth.rescued) report.flags |= kStepRescued;
+  for (std::uint32_t index : cloth.rescued_bodies)
+    report.rescued_bodies.push_back(cloth_ids_[index]);
   if (!cloth.unrecoverable.empty()) {
     report.flags |= kStepUnrecoverable;
     for (std::uint32_t index : cloth.unrecoverable) {
@@ -204,7 +222,11 @@ StepReport World::step(const std::function<void()>& yield_point) {
     if (yield_point) yield_point();
     const SolidStepStats& solid =
         solids_.step(settings_.time_step, settings_.gravity, step_colliders_, yield_point);
-    if (solid.rescued) report.flags |= kStepRescued;
+    if (solid.rescued) {
+      report.flags |= kStepRescued;
+      report.rescued_bodies.insert(report.rescued_bodies.end(), solid_ids_.begin(),
+                                   solid_ids_.end());
+    }
     if (solid.unrecoverable) {
       // the solids step together, so all of them were rolled back
       report.flags |= kStepUnrecoverable;

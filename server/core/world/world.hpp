@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "core/cloth/cloth_system.hpp"
@@ -14,14 +15,16 @@ namespace felt {
 struct WorldSettings {
   Vec3 gravity = Vec3(0, -9.81, 0);
   Real time_step = 1e-3;  ///< s
-  /// A particle faster than this is taken as an exploding state and the step is retried.
-  Real max_speed = 100;
+  /// m/s; a particle faster than this is taken as an exploding state and the step is retried,
+  /// besides the limit scaled from the scene (HealthSettings::speed_growth). None by default.
+  Real max_speed = std::numeric_limits<Real>::infinity();
   /// How many times a failed step is retried, each time with twice the substeps.
   int max_substep_doublings = 6;
   /// A step after which kinetic plus elastic energy exceeds this factor times what it was plus
   /// the work gravity and external forces did is taken as exploding (an unstable mode grows
   /// geometrically; a passive cloth can only lose energy).
   Real max_energy_growth = 2;
+  HealthSettings health{};
 };
 
 /// Names a body of a world: its slot in the low 16 bits and the slot's generation in the high
@@ -47,6 +50,7 @@ enum StepFlag : std::uint32_t {
 struct StepReport {
   std::uint32_t flags = kStepOk;
   int max_substeps = 1;                             ///< the most substeps any body needed
+  std::vector<std::uint32_t> rescued_bodies;        ///< ids; empty (no allocation) when none
   std::vector<std::uint32_t> unrecoverable_bodies;  ///< ids; empty (no allocation) when none
   StepProfile cloth_profile;  ///< where the cloths' step spent its time (ClothSystem::kStages)
   StepProfile solid_profile;  ///< and the solids' (SolidSystem::kStages)
@@ -98,6 +102,9 @@ class World {
   std::vector<ClothBody>& cloths() { return cloths_.bodies(); }
   const std::vector<ClothBody>& cloths() const { return cloths_.bodies(); }
   const ClothSystem& cloth_system() const { return cloths_; }
+  /// The substeps body `id` (a live cloth or solid) steps with now and how many of its steps
+  /// were rescued; solids share theirs.
+  const StickySubsteps& substeps(BodyId id) const;
   SolidSystem& solids() { return solids_; }
   const SolidSystem& solids() const { return solids_; }
   const std::vector<Collider>& colliders() const { return colliders_; }

@@ -1,0 +1,84 @@
+#pragma once
+// The energy check that slow growth cannot fool (issue 27): a passive body's mechanical energy
+// E = kinetic + elastic + gravitational changes only by the work W that applied forces (a user's
+// push, the wind) do on it, less what damping, collisions and constraints take away. So the
+// budget B = E − W never rises in exact arithmetic; numerical growth makes it rise, slowly
+// (explicit midpoint: by (ωh)⁴/4 of the energy per step) or fast. A rise of B, over a window of
+// steps, above its lowest value since the body was last set, by more than a tolerance of the
+// body's energy scale, is growth, whatever its rate per step.
+
+#include <algorithm>
+#include <limits>
+
+#include "core/math/types.hpp"
+
+namespace felt {
+
+class EnergyBalance {
+ public:
+  /// Starts over from mechanical energy `energy`: no work done yet, no window open.
+  void reset(Real energy) {
+    lowest_ = energy;
+    work_ = 0;
+    window_ = {};
+  }
+
+  /// B after a step that leaves mechanical energy `energy` and in which applied forces did
+  /// `work`.
+  Real budget_after(Real energy, Real work) const { return energy - (work_ + work); }
+
+  /// False when the step that leaves budget `budget` (budget_after) and energy scale `scale`
+  /// closes a window of `window` steps whose lowest budget lies more than `tolerance` times the
+  /// window's largest scale above the lowest budget before it. The scale is the body's kinetic
+  /// and elastic energy plus its weight times its size (Mgℓ, so that a body at rest has one).
+  /// Judging a window's lowest value, not each step's, lets a symplectic scheme's energy swing
+  /// within a period (±ωh/2 of it) without counting as growth.
+  bool within(Real budget, Real scale, Real tolerance, int window) const {
+    if (window_.steps + 1 < window) return true;
+    const Real lowest = std::min(window_.lowest, budget);
+    return lowest - lowest_ <= tolerance * std::max(window_.scale, scale);
+  }
+
+  /// Takes a healthy step (as judged by within with the same arguments).
+  void accept(Real energy, Real work, Real scale, int window) {
+    work_ += work;
+    const Real budget = energy - work_;
+    window_.lowest = std::min(window_.lowest, budget);
+    window_.scale = std::max(window_.scale, scale);
+    if (++window_.steps < window) return;
+    lowest_ = std::min(lowest_, window_.lowest);
+    window_ = {};
+  }
+
+ private:
+  struct Window {
+    int steps = 0;
+    Real lowest = std::numeric_limits<Real>::infinity();
+    Real scale = 0;
+  };
+  Real lowest_ = 0;  ///< the lowest B of the closed windows since reset
+  Real work_ = 0;    ///< applied work since reset
+  Window window_;
+};
+
+/// What a step may give a particle at most, m/s: the speed `fastest` of the fastest particle
+/// before the step, the acceleration `acceleration` (gravity and applied forces) times h, and
+/// `reachable`, the speed the lightest particle would have with all the body's kinetic and
+/// elastic energy.
+struct SpeedSources {
+  Real fastest = 0;
+  Real acceleration = 0;
+  Real reachable = 0;
+};
+
+/// The speed no particle may exceed after a step of length `h` of a body of size `size` (m):
+/// `growth` times what the step could give a particle (`sources`) plus size / h, and never more
+/// than `cap`. Free fall gains g h a step and passes at any length of the fall; a particle that
+/// outruns its own body in a step and several times what its energy allows is exploding.
+inline Real scaled_speed_limit(const SpeedSources& sources, Real size, Real h, Real growth,
+                               Real cap) {
+  return std::min(
+      cap, growth * (sources.fastest + sources.acceleration * h + sources.reachable) + size / h);
+}
+
+}  // namespace felt

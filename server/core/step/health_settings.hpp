@@ -1,0 +1,33 @@
+#pragma once
+// How a world judges the state a step leaves (DESIGN "numerical health"), shared by the cloth and
+// the solid systems; a scene sets them with its "health" keys (docs/scenes.md).
+
+#include <limits>
+
+#include "core/math/types.hpp"
+
+namespace felt {
+
+struct HealthSettings {
+  /// A body's mechanical energy (kinetic, elastic, gravitational) less the work applied forces
+  /// did on it, at its lowest over a window, may lie above its lowest value since the body was
+  /// last set (its start, an edit, a rescue) by at most this fraction of the body's energy scale
+  /// (EnergyBalance): damping, collisions and stretch limiting only take energy away, so a rise
+  /// beyond it is numerical growth, however slow. Infinity turns the check off.
+  Real energy_tolerance = 0.25;
+  /// s; the window (at least kMinWindowSteps steps)
+  Real energy_window = 0.25;
+  static constexpr int kMinWindowSteps = 8;
+  /// A particle may leave a step at most this factor times faster than the fastest particle was
+  /// before it, plus |g| h and the body's size over h (scaled_speed_limit): free fall is never
+  /// flagged, a mode that grows geometrically within a step is.
+  Real speed_growth = 4;
+  /// A body rescued with k substeps keeps them; after this many seconds without a rescue it tries
+  /// k/2, and twice as long before the next try each time a halving had to be undone.
+  Real relax_after = 1;
+  /// Explicit integrators on cloth take the substeps the springs' stable step needs
+  /// (cloth_stable_step.hpp) without waiting to fail.
+  bool stable_substeps = true;
+};
+
+}  // namespace felt
