@@ -16,7 +16,6 @@ void read_health(const ObjectReader& health, WorldSettings& settings) {
   settings.max_substep_doublings = static_cast<int>(
       health.count("max_substep_doublings", settings.max_substep_doublings, 0, 10));
   h.relax_after = health.ranged("relax_after", h.relax_after, 0, 1e6, "s");
-  h.stable_substeps = health.boolean("stable_substeps", h.stable_substeps);
 }
 
 }  // namespace felt::scene_json

@@ -382,7 +382,7 @@ Scene read_scene(const json& document, const SceneLoadOptions& options) {
     read_health(
         ObjectReader(root.at("health"), root.path_of("health"),
                      {"energy_check", "energy_tolerance", "energy_window", "max_energy_growth",
-                      "speed_growth", "max_substep_doublings", "relax_after", "stable_substeps"}),
+                      "speed_growth", "max_substep_doublings", "relax_after"}),
         settings);
   }
   SolidStepSettings solid_settings;

@@ -22,6 +22,7 @@
 
 #include "bench_scene.hpp"
 #include "core/cloth/cloth_grid.hpp"
+#include "core/cloth/hanging_cloth.hpp"
 #include "core/world/world.hpp"
 
 namespace felt {
@@ -38,15 +39,6 @@ struct Run {
   Real sag = 0;
   std::uint64_t rescued = 0, unrecoverable = 0;
 };
-
-Real sag_of(const ClothBody& body) {
-  Real top = -1e300, lowest = 1e300;
-  for (std::uint32_t p = 0; p < body.state().size(); ++p) {
-    if (body.is_pinned(p)) top = std::max(top, body.state().x[p].y());
-    lowest = std::min(lowest, body.state().x[p].y());
-  }
-  return top - lowest;
-}
 
 Run run(World world) {
   Run r;
@@ -66,31 +58,8 @@ Run run(World world) {
   r.ms_per_step = 1e3 * seconds / static_cast<double>(steps);
   r.limit_ms_per_step = 1e3 * limit_seconds / static_cast<double>(steps);
   r.final_kinetic_energy = body.kinetic_energy();
-  r.sag = sag_of(body);
+  r.sag = test::sag_of(body);
   return r;
-}
-
-/// The served scene's cloth (2 m, 4 kg, k = 30 / 8 / 1 N/m) at n × n, hung from its top row.
-World hanging(std::uint32_t n, const std::string& integrator, Real h, bool limited,
-              Real stiffness_scale = 1, GridPinPreset pins = GridPinPreset::kTopRow) {
-  GridClothSpec spec;
-  spec.nx = spec.ny = n;
-  spec.width = spec.height = 2;
-  spec.total_mass = 4;
-  spec.center = Vec3(0, 1.5, 0);
-  ClothParams params;
-  params.spring(SpringKind::kStructural) = {true, 30 * stiffness_scale, 0.05};
-  params.spring(SpringKind::kShear) = {true, 8 * stiffness_scale, 0.02};
-  params.spring(SpringKind::kBend) = {true, 1 * stiffness_scale, 0.005};
-  params.drag = 0.01;
-  params.stretch.enabled = limited;
-  params.stretch.max_strain = 0.1;
-  ClothBody body("sheet", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
-                 make_integrator(integrator));
-  for (std::uint32_t p : grid_pin_indices(spec, pins)) body.pin(p);
-  World world(WorldSettings{Vec3(0, -9.81, 0), h, 100, 6});
-  world.add_body(std::move(body));
-  return world;
 }
 
 void print_row(const std::string& name, Real h, const Run& off, const Run& on, Real reference) {
@@ -117,7 +86,7 @@ struct Case {
 };
 
 void top_row_table(std::uint32_t n) {
-  const Run reference = run(hanging(n, "implicit_euler", 4e-3, false, 100));
+  const Run reference = run(test::hanging_cloth(n, "implicit_euler", 4e-3, false, 100));
   std::printf(
       "%u x %u, 2 m, 4 kg, top row pinned; stiff reference (k x 100, implicit Euler, "
       "4 ms): sag %.4f m, largest strain %.4f, KE at 5 s %.2g J\n\n",
@@ -128,14 +97,14 @@ void top_row_table(std::uint32_t n) {
         Case{"rk4", 2e-3}, Case{"verlet", 2e-3}, Case{"velocity_verlet", 2e-3},
         Case{"leapfrog", 2e-3}, Case{"implicit_euler", 1.0 / 240}, Case{"imex", 1.0 / 240},
         Case{"desbrun", 1.0 / 240}, Case{"kang", 1.0 / 240}}) {
-    const Run off = run(hanging(n, c.integrator, c.h, false));
-    const Run on = run(hanging(n, c.integrator, c.h, true));
+    const Run off = run(test::hanging_cloth(n, c.integrator, c.h, false));
+    const Run on = run(test::hanging_cloth(n, c.integrator, c.h, true));
     print_row(c.integrator, c.h, off, on, reference.sag);
   }
 }
 
 void served_table() {
-  const Run served_reference = run(hanging(100, "implicit_euler", 4e-3, false, 100));
+  const Run served_reference = run(test::hanging_cloth(100, "implicit_euler", 4e-3, false, 100));
   std::printf(
       "\nscenes/service_bench.json (100 x 100, 2 ms); stiff reference "
       "at 100 x 100: sag %.4f m\n\n",
@@ -164,13 +133,15 @@ void served_table() {
 void corners_table(std::uint32_t n) {
   // most of the weight carried by the limit through the few springs at two corners
   const Run corner_reference =
-      run(hanging(n, "implicit_euler", 4e-3, false, 100, GridPinPreset::kTopCorners));
+      run(test::hanging_cloth(n, "implicit_euler", 4e-3, false, 100, GridPinPreset::kTopCorners));
   std::printf("\n%u x %u hung from its two top corners; stiff reference: sag %.4f m\n\n", n, n,
               corner_reference.sag);
   header();
   for (const Case& c : {Case{"symplectic_euler", 2e-3}, Case{"implicit_euler", 1.0 / 240}}) {
-    const Run off = run(hanging(n, c.integrator, c.h, false, 1, GridPinPreset::kTopCorners));
-    const Run on = run(hanging(n, c.integrator, c.h, true, 1, GridPinPreset::kTopCorners));
+    const Run off =
+        run(test::hanging_cloth(n, c.integrator, c.h, false, 1, GridPinPreset::kTopCorners));
+    const Run on =
+        run(test::hanging_cloth(n, c.integrator, c.h, true, 1, GridPinPreset::kTopCorners));
     print_row(c.integrator, c.h, off, on, corner_reference.sag);
   }
 }

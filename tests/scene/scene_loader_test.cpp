@@ -355,10 +355,9 @@ TEST(SceneLoader, MassesAndSpringConstantsHaveRanges) {
 TEST(SceneLoader, HealthKeysAreReadAndBounded) {
   json doc = minimal_cloth();
   doc["max_speed"] = 30;
-  doc["health"] = {{"energy_tolerance", 0.5},  {"energy_window", 2},
-                   {"speed_growth", 8},        {"relax_after", 3},
-                   {"stable_substeps", false}, {"max_substep_doublings", 2},
-                   {"max_energy_growth", 4}};
+  doc["health"] = {{"energy_tolerance", 0.5},    {"energy_window", 2},
+                   {"speed_growth", 8},          {"relax_after", 3},
+                   {"max_substep_doublings", 2}, {"max_energy_growth", 4}};
   const auto scene = load_scene(doc);
   ASSERT_TRUE(scene) << scene.error().what();
   const WorldSettings& s = scene->world.settings();
@@ -367,7 +366,6 @@ TEST(SceneLoader, HealthKeysAreReadAndBounded) {
   EXPECT_EQ(s.health.energy_window, 2);
   EXPECT_EQ(s.health.speed_growth, 8);
   EXPECT_EQ(s.health.relax_after, 3);
-  EXPECT_FALSE(s.health.stable_substeps);
   EXPECT_EQ(s.max_substep_doublings, 2);
   EXPECT_EQ(s.max_energy_growth, 4);
   EXPECT_EQ(scene->world.cloth_system().settings().health.energy_tolerance, 0.5);

@@ -25,9 +25,6 @@ struct HealthSettings {
   /// A body rescued with k substeps keeps them; after this many seconds without a rescue it tries
   /// k/2, and twice as long before the next try each time a halving had to be undone.
   Real relax_after = 1;
-  /// Explicit integrators on cloth take the substeps the springs' stable step needs
-  /// (cloth_stable_step.hpp) without waiting to fail.
-  bool stable_substeps = true;
 };
 
 }  // namespace felt

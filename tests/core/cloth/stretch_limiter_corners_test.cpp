@@ -8,42 +8,17 @@
 
 #include "core/cloth/cloth_body.hpp"
 #include "core/cloth/cloth_grid.hpp"
+#include "core/cloth/hanging_cloth.hpp"
 #include "core/cloth/stretch_limiter.hpp"
 #include "core/world/world.hpp"
 
 namespace felt {
 namespace {
 
-/// The served scene's cloth (2 m, 4 kg, structural / shear / bend 30 / 8 / 1 N/m, times
-/// `stiffness_scale`) at 20 x 20, hung from its two top corners.
+/// The served scene's cloth at 20 x 20, hung from its two top corners.
 World corner_hang(const std::string& integrator, Real h, bool limited, Real stiffness_scale = 1) {
-  GridClothSpec spec;
-  spec.nx = spec.ny = 20;
-  spec.width = spec.height = 2;
-  spec.total_mass = 4;
-  ClothParams params;
-  params.spring(SpringKind::kStructural) = {true, 30 * stiffness_scale, 0.05};
-  params.spring(SpringKind::kShear) = {true, 8 * stiffness_scale, 0.02};
-  params.spring(SpringKind::kBend) = {true, 1 * stiffness_scale, 0.005};
-  params.drag = 0.01;
-  params.stretch.enabled = limited;
-  params.stretch.max_strain = 0.1;
-  ClothBody body("c", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
-                 make_integrator(integrator));
-  for (std::uint32_t p : grid_pin_indices(spec, GridPinPreset::kTopCorners)) body.pin(p);
-  World world(WorldSettings{Vec3(0, -9.81, 0), h, 100, 6});
-  world.add_body(std::move(body));
-  return world;
-}
-
-/// The pins' height less the lowest particle's.
-Real sag_of(const ClothBody& body) {
-  Real top = -1e300, lowest = 1e300;
-  for (std::uint32_t p = 0; p < body.state().size(); ++p) {
-    if (body.is_pinned(p)) top = std::max(top, body.state().x[p].y());
-    lowest = std::min(lowest, body.state().x[p].y());
-  }
-  return top - lowest;
+  return test::hanging_cloth(20, integrator, h, limited, stiffness_scale,
+                             GridPinPreset::kTopCorners);
 }
 
 Real mechanical_energy(const ClothBody& body) {
@@ -104,11 +79,11 @@ TEST(TwoCornerHang, ComesToRestAndSagsLikeAStiffCloth) {
   while (stiff.time() < 5) stiff.step();
   World unlimited = corner_hang("symplectic_euler", 2e-3, false);
   while (unlimited.time() < 5) unlimited.step();
-  const Real reference = sag_of(stiff.cloths()[0]);
+  const Real reference = test::sag_of(stiff.cloths()[0]);
   EXPECT_LT(stiff.cloths()[0].max_strain(), 0.02);
-  EXPECT_GT(sag_of(cloth), reference);
-  EXPECT_LT(sag_of(cloth), 1.15 * reference);
-  EXPECT_GT(sag_of(unlimited.cloths()[0]), 1.5 * reference);
+  EXPECT_GT(test::sag_of(cloth), reference);
+  EXPECT_LT(test::sag_of(cloth), 1.15 * reference);
+  EXPECT_GT(test::sag_of(unlimited.cloths()[0]), 1.5 * reference);
 }
 
 TEST(StretchLimiter, AProjectionOfAClothAtRestLeavesItAtRestWithLessElasticEnergy) {
