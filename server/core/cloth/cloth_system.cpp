@@ -6,6 +6,12 @@
 #include "core/math/check.hpp"
 
 namespace felt {
+namespace {
+
+// keeps rounding noise of a body at rest (or weightless) from counting as growth
+constexpr Real kEnergyFloor = 1e-9;
+
+}  // namespace
 
 std::uint32_t ClothSystem::add_body(ClothBody body) {
   BodyHealth health;
@@ -42,12 +48,9 @@ Real ClothSystem::mechanical_energy(const ClothBody& body) {
   return body.kinetic_energy() + body.elastic_energy() + body.gravitational_energy();
 }
 
-Real ClothSystem::energy_scale(std::size_t index) const {
-  const ClothBody& body = bodies_[index];
-  // the floor keeps rounding noise of a weightless body at rest from counting as growth
-  constexpr Real kEnergyFloor = 1e-9;
-  return body.kinetic_energy() + body.elastic_energy() +
-         health_[index].mass * body.gravity().norm() * health_[index].size + kEnergyFloor;
+Real ClothSystem::energy_scale(std::size_t index, Real kinetic_elastic) const {
+  return kinetic_elastic +
+         health_[index].mass * bodies_[index].gravity().norm() * health_[index].size + kEnergyFloor;
 }
 
 const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider> colliders,
@@ -99,7 +102,9 @@ const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider
       // the growth before the rescue cannot be undone: the balance starts over from here
       health_[b].balance.reset(mechanical_energy(body));
     } else if (outcome.ok) {
-      health_[b].balance.accept(mechanical_energy(body), work_, energy_scale(b), window_);
+      // healthy() measured the state the step left
+      health_[b].balance.accept(energy_[b] + gravitational_, work_, energy_scale(b, energy_[b]),
+                                window_);
     } else {
       body.state().x = backup_.x;
       for (Vec3& v : body.state().v) v.setZero();
@@ -176,18 +181,18 @@ bool ClothSystem::healthy(std::size_t index, Real t, Real h, StepStart& start) {
   const Real work = std::max({work_by_displacement, work_by_velocity, Real{0}});
   const Real energy_after = body.kinetic_energy() + body.elastic_energy();
   const Real growth = settings_.max_energy_growth;
-  // the floor keeps rounding noise of a body at rest from counting as growth
-  constexpr Real kEnergyFloor = 1e-9;
   if (energy_after > growth * (start.energy + work) + kEnergyFloor) return false;
   // slow growth, judged on the first attempt only: a window cannot judge a retried step, and
   // the balance starts over after it
   const EnergyBalance& balance = health_[index].balance;
-  if (start.first && !balance.within(balance.budget_after(
-                                         energy_after + body.gravitational_energy(), applied_work),
-                                     energy_scale(index), health.energy_tolerance, window_)) {
+  const Real gravitational = body.gravitational_energy();
+  if (start.first &&
+      !balance.within(balance.budget_after(energy_after + gravitational, applied_work),
+                      energy_scale(index, energy_after), health.energy_tolerance, window_)) {
     return false;
   }
   work_ = applied_work;
+  gravitational_ = gravitational;
   energy_[index] = energy_after;
   return true;
 }

@@ -105,9 +105,9 @@ class ClothSystem {
   bool attempt(std::size_t index, Real t, Real h, int substeps, std::span<const Collider> colliders,
                StepStart& start, const std::function<void()>& yield_point);
   bool healthy(std::size_t index, Real t, Real h, StepStart& start);
-  /// Cloth `index`'s kinetic and elastic energy plus its weight times its size, J: what the
-  /// energy balance's tolerance is a fraction of.
-  Real energy_scale(std::size_t index) const;
+  /// Cloth `index`'s kinetic and elastic energy (`kinetic_elastic`, J) plus its weight times
+  /// its size: what the energy balance's tolerance is a fraction of.
+  Real energy_scale(std::size_t index, Real kinetic_elastic) const;
   /// Kinetic, elastic and gravitational energy.
   static Real mechanical_energy(const ClothBody& body);
 
@@ -123,7 +123,10 @@ class ClothSystem {
   ParticleState backup_;
   /// applied forces (external and wind) at the start of a step, and at its end
   std::vector<Vec3> applied_before_, applied_after_;
-  Real work_ = 0;   ///< by the applied forces over the attempt last checked
+  Real work_ = 0;  ///< by the applied forces over the attempt last checked
+  /// the gravitational energy the attempt last checked left, so that a healthy step's
+  /// mechanical energy is not summed over every spring again
+  Real gravitational_ = 0;
   int window_ = 1;  ///< steps in an energy window at the step length of the last step
   ClothStepStats stats_;
 };
