@@ -5,10 +5,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/cloth/vertex_strain.hpp"
 #include "felt/v1/envelope.pb.h"
 #include "net/shared_frame_bodies.hpp"
 #include "net/wire_convert.hpp"
+#include "runtime/vertex_scalars.hpp"
 #include "wire/frame_codec.hpp"
 
 namespace felt::net {
@@ -102,10 +102,10 @@ void put_body(const BodySnapshot& body, const std::vector<float>* positions,
     put_floats(body.positions, *out.mutable_positions());
     if (options.normals) put_floats(body.normals, *out.mutable_normals());
   }
-  if (options.scalars && body.cloth) {
-    thread_local std::vector<float> strain;
-    vertex_strain(*body.cloth, body.positions, strain);
-    out.mutable_scalars()->Assign(strain.begin(), strain.end());
+  if (options.scalars) {
+    thread_local std::vector<float> scalars;
+    vertex_scalars(body, scalars);
+    out.mutable_scalars()->Assign(scalars.begin(), scalars.end());
   }
   if (triangles) {
     auto& corners = *out.mutable_triangles();

@@ -44,6 +44,8 @@ std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnap
       out.name = body.name();
       const BodySnapshot* before = previous ? previous->find(id, at) : nullptr;
       out.surface = solid_surface(body, before ? before->surface : nullptr, out.positions);
+      out.solid = BodySnapshot::SolidShape{body.shared_rest(), body.shared_embedded_surface(), {}};
+      if (out.solid->embedded) out.solid->nodes = body.positions();
     }
     compute_vertex_normals(out.positions, out.triangles(), out.normals);
   }

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,14 @@ struct BodySnapshot {
   /// a cloth's model (springs and rest lengths), shared, for the strain clients may ask for;
   /// null for a solid
   std::shared_ptr<const ClothModel> cloth;
+  /// What a solid's volume change per vertex is computed from, when clients ask for it.
+  struct SolidShape {
+    std::shared_ptr<const TetMesh> rest;  ///< the lattice at rest, shared
+    /// the fine surface the vertices lie on, shared; null when the vertices are the nodes
+    std::shared_ptr<const EmbeddedSurface> embedded;
+    std::vector<Vec3> nodes;  ///< the lattice's nodes now, when `embedded` (else `positions`)
+  };
+  std::optional<SolidShape> solid;  ///< empty for a cloth
 
   const std::vector<Triangle>& triangles() const { return *surface; }
 };

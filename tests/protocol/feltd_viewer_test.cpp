@@ -1,7 +1,8 @@
 // What a viewer gets besides the vertices: the colliders' shapes in the body catalog, every
-// proxy of the scene in the frames with its client's name (its own marked), a cloth's strain per
-// vertex when asked, and each body's integrator and strain in GetStats.
+// proxy of the scene in the frames with its client's name (its own marked), a cloth's strain or
+// a solid's volume change per vertex when asked, and each body's integrator and strain in GetStats.
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -121,6 +122,38 @@ TEST_F(FeltdTest, ScalarsAreAClothsStrainPerVertexOnlyWhenAsked) {
   const auto plain = client->next_frame(5s);
   ASSERT_TRUE(plain);
   EXPECT_EQ(plain->bodies(0).scalars_size(), 0);
+}
+
+TEST_F(FeltdTest, ScalarsAreASolidsVolumeChangePerVertex) {
+  auto client = greeted("viewer");
+  // a block of 1 m on the floor, with a fine surface: its weight squeezes its bottom
+  client->load_scene_json(R"({"time_step": 0.01,
+    "colliders": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]}],
+    "bodies": [{"name": "block", "type": "solid",
+                "lattice": {"cells": [2, 2, 2], "size": [1, 1, 1], "fine_divisions": 4},
+                "transform": {"translate": [0, 0.5, 0]}, "model": "mass_spring", "node_mass": 0.05,
+                "mass_spring": {"distance_stiffness": 60, "volume_stiffness": 20, "damping": 2}}]})");
+  client::FrameSubscription subscription;
+  subscription.quantized = true;
+  subscription.scalars = true;
+  client->subscribe_frames(subscription);
+  std::optional<v1::Frame> frame;
+  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  do {
+    frame = client->next_frame(5s);
+  } while (frame && frame->step() < 50 && std::chrono::steady_clock::now() < deadline);
+  ASSERT_TRUE(frame);
+  ASSERT_GE(frame->step(), 50u);
+  const v1::BodyFrame& block = frame->bodies(0);
+  ASSERT_GT(block.vertex_count(), 27u);  // the fine surface's vertices, not the lattice's nodes
+  ASSERT_EQ(block.scalars_size(), static_cast<int>(block.vertex_count()));
+  float smallest = 0;
+  for (float s : block.scalars()) {
+    ASSERT_TRUE(std::isfinite(s));
+    ASSERT_GT(s, -1.0f);  // no tetrahedron of it is turned inside out
+    smallest = std::min(smallest, s);
+  }
+  EXPECT_LT(smallest, -1e-3f);
 }
 
 TEST_F(FeltdTest, StatsNameEachBodysIntegratorAndStrain) {

@@ -186,16 +186,29 @@ class Locator {
   std::vector<Mat3> inverse_edges_;
 };
 
+/// Per fine vertex of `surface`, the weighted sum of what its tetrahedron's nodes carry.
+template <typename Value>
+void interpolate(const EmbeddedSurface& surface, std::span<const Value> nodes,
+                 std::span<const Tetrahedron> tets, std::vector<Value>& out) {
+  out.resize(surface.vertex_count());
+  for (std::size_t v = 0; v < surface.vertex_count(); ++v) {
+    const Tetrahedron& t = tets[surface.tet[v]];
+    const Vec4& w = surface.weights[v];
+    out[v] = static_cast<Value>(w[0] * nodes[t[0]] + w[1] * nodes[t[1]] + w[2] * nodes[t[2]] +
+                                w[3] * nodes[t[3]]);
+  }
+}
+
 }  // namespace
 
 void EmbeddedSurface::positions(std::span<const Vec3> nodes, std::span<const Tetrahedron> tets,
                                 std::vector<Vec3>& out) const {
-  out.resize(vertex_count());
-  for (std::size_t v = 0; v < vertex_count(); ++v) {
-    const Tetrahedron& t = tets[tet[v]];
-    const Vec4& w = weights[v];
-    out[v] = w[0] * nodes[t[0]] + w[1] * nodes[t[1]] + w[2] * nodes[t[2]] + w[3] * nodes[t[3]];
-  }
+  interpolate(*this, nodes, tets, out);
+}
+
+void EmbeddedSurface::values(std::span<const float> node_values, std::span<const Tetrahedron> tets,
+                             std::vector<float>& out) const {
+  interpolate(*this, node_values, tets, out);
 }
 
 EmbeddedSurface embed_surface(const TetMesh& lattice, const TriangleMesh& fine) {

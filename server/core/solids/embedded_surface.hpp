@@ -25,6 +25,10 @@ struct EmbeddedSurface {
   /// The fine vertices for the lattice nodes at `nodes`.
   void positions(std::span<const Vec3> nodes, std::span<const Tetrahedron> tets,
                  std::vector<Vec3>& out) const;
+  /// A value per fine vertex, interpolated from one per lattice node by the barycentric
+  /// coordinates.
+  void values(std::span<const float> node_values, std::span<const Tetrahedron> tets,
+              std::vector<float>& out) const;
 };
 
 /// Embeds every vertex of `fine` in the tetrahedron of `lattice` that contains it (the one it is

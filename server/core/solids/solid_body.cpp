@@ -116,14 +116,14 @@ std::optional<std::string> solid_integrator_refusal(SolidModel model, std::strin
 
 SolidBody::SolidBody(std::string name, TetMesh mesh, SolidMaterial material)
     : name_(std::move(name)),
-      rest_(std::move(mesh)),
-      topology_(build_topology(rest_)),
+      rest_(std::make_shared<const TetMesh>(std::move(mesh))),
+      topology_(build_topology(*rest_)),
       material_(material),
-      rest_volume_(total_volume(rest_.nodes, rest_.tets)),
-      x_(rest_.nodes),
-      x_prev_(rest_.nodes),
-      v_(rest_.nodes.size(), Vec3::Zero()),
-      external_force_(rest_.nodes.size(), Vec3::Zero()) {
+      rest_volume_(total_volume(rest_->nodes, rest_->tets)),
+      x_(rest_->nodes),
+      x_prev_(rest_->nodes),
+      v_(rest_->nodes.size(), Vec3::Zero()),
+      external_force_(rest_->nodes.size(), Vec3::Zero()) {
   set_material(material);
 }
 
@@ -137,7 +137,7 @@ void SolidBody::set_material(const SolidMaterial& material) {
   material_ = material;
   // a new model starts from the rest shape again (a shape-matching body forgets its plastic flow)
   model_state_ = std::make_unique<ModelState>(
-      ModelState{make_model(rest_, topology_, material_), std::vector<Vec3>(x_.size())});
+      ModelState{make_model(*rest_, topology_, material_), std::vector<Vec3>(x_.size())});
   if (integrator_ && solid_integrator_refusal(material_.model, integrator_->name())) {
     integrator_.reset();  // it does not apply to the new model
   }
@@ -169,7 +169,7 @@ SolidBody::SurfacePoint SolidBody::surface_point(std::uint32_t vertex) const {
     FELT_CHECK(vertex < x_.size());
     return {{vertex, vertex, vertex, vertex}, {1, 0, 0, 0}};
   }
-  const Tetrahedron& tet = rest_.tets[embedded_->tet[vertex]];
+  const Tetrahedron& tet = rest_->tets[embedded_->tet[vertex]];
   SurfacePoint point;
   for (int c = 0; c < 4; ++c) {
     point.nodes[c] = tet[c];

@@ -94,7 +94,9 @@ class SolidBody {
   SolidBody& operator=(SolidBody&&) noexcept;
 
   const std::string& name() const { return name_; }
-  const TetMesh& rest() const { return rest_; }
+  const TetMesh& rest() const { return *rest_; }
+  /// The rest shape, shared with snapshots (it never changes).
+  const std::shared_ptr<const TetMesh>& shared_rest() const { return rest_; }
   const TetTopology& topology() const { return topology_; }
   const SolidMaterial& material() const { return material_; }
   /// A new material keeps the integrator only when it still applies.
@@ -188,7 +190,7 @@ class SolidBody {
   Real elastic_energy() const;
   /// −Σ m g·x over the nodes, J: zero at the origin, so only its changes mean anything.
   Real gravitational_energy(const Vec3& gravity) const;
-  Real volume() const { return total_volume(x_, rest_.tets); }
+  Real volume() const { return total_volume(x_, rest_->tets); }
   Real rest_volume() const { return rest_volume_; }
 
   /// How many vertices clients see: the fine surface's, or without one the nodes.
@@ -212,7 +214,7 @@ class SolidBody {
   void add_anchor_forces(std::span<const Vec3> x, std::span<const Vec3> v, std::span<Vec3> f) const;
 
   std::string name_;
-  TetMesh rest_;
+  std::shared_ptr<const TetMesh> rest_;
   TetTopology topology_;
   SolidMaterial material_;
   Real rest_volume_ = 0;

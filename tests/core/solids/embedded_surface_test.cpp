@@ -112,6 +112,23 @@ TEST(EmbeddedSurface, FollowsAnAffineMapOfTheLatticeExactly) {
   EXPECT_EQ(surface.uv, fine.uv);
 }
 
+// Barycentric interpolation reproduces a linear function: values given at the nodes by one come
+// out at every fine vertex as the function's value there.
+TEST(EmbeddedSurface, CarriesALinearFunctionOfTheNodesToTheVerticesExactly) {
+  const TetMesh lattice = box_lattice({2, 3, 2}, Vec3(-1, 0, 0.5), 0.4);
+  const TriangleMesh fine = random_points(Vec3(-1, 0, 0.5), Vec3(-0.2, 1.2, 1.3), 200, 7);
+  const EmbeddedSurface surface = embed_surface(lattice, fine);
+  const auto f = [](const Vec3& p) { return 0.5 - 2 * p.x() + 0.25 * p.y() + 3 * p.z(); };
+  std::vector<float> at_nodes;
+  for (const Vec3& n : lattice.nodes) at_nodes.push_back(static_cast<float>(f(n)));
+  std::vector<float> at_vertices;
+  surface.values(at_nodes, lattice.tets, at_vertices);
+  ASSERT_EQ(at_vertices.size(), fine.positions.size());
+  for (std::size_t v = 0; v < at_vertices.size(); ++v) {
+    EXPECT_NEAR(at_vertices[v], f(fine.positions[v]), 1e-5) << v;
+  }
+}
+
 // A vertex outside every tetrahedron goes to the nearest one, compared with a brute-force
 // search over all of them, near the lattice and far from it.
 TEST(EmbeddedSurface, OutsideVerticesGoToTheNearestTetrahedron) {
