@@ -160,6 +160,13 @@ TEST(WorldState, AStateThatDoesNotFitChangesNothing) {
   state = capture_state(world);
   state.bodies[1].previous_positions[0] = Vec3(1e7, 0, 0);
   EXPECT_FALSE(restore_state(world, state));
+  // a solid's last step longer than any of the scene's: its Verlet step scales the acceleration
+  // by it
+  for (const Real previous_step : {1e300, 2 * world.settings().time_step, -1e-3}) {
+    state = capture_state(world);
+    state.bodies[1].previous_step = previous_step;
+    EXPECT_FALSE(restore_state(world, state)) << previous_step;
+  }
   state = capture_state(world);
   state.bodies[1].velocities.pop_back();
   EXPECT_FALSE(restore_state(world, state));
