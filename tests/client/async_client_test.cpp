@@ -71,7 +71,7 @@ TEST_F(AsyncClientTest, AProxyUpdateIsAnsweredWithItsStampAndTheForce) {
   connect(client);
   const std::uint64_t before = client::steady_microseconds();
   client.send_proxy_update(0, {0, 1.2, 0.01});  // 1 cm into the curtain at 400 N/m
-  ASSERT_TRUE(forces.wait_for(1, 5s));
+  ASSERT_TRUE(forces.wait_for(1, scaled(5s)));
   const auto [force, read_us] = forces.items()[0];
   EXPECT_GE(force.client_time_us(), before);
   EXPECT_LE(force.client_time_us(), read_us);
@@ -140,7 +140,7 @@ TEST_F(AsyncClientTest, EachReplyGoesToItsOwnRequestsHandler) {
     EXPECT_EQ(reply.request_id(), ids[r]);
   }
   EXPECT_EQ(forces.items(), (std::vector<std::uint64_t>{1, 2, 3, 4, 5}));
-  ASSERT_TRUE(frames.wait_for(1, 5s));
+  ASSERT_TRUE(frames.wait_for(1, scaled(5s)));
   EXPECT_EQ(frames.items()[0].bodies(0).vertex_count(), 400u);
 }
 
@@ -154,7 +154,7 @@ TEST_F(AsyncClientTest, ErrorsGoToTheirHandlerOrToOnError) {
   v1::ClientMessage close;
   close.mutable_close_proxy()->set_proxy_id(99);
   const std::uint64_t id = client.send(close, [&](const v1::ServerMessage& m) { replies.put(m); });
-  ASSERT_TRUE(replies.wait_for(1, 5s));
+  ASSERT_TRUE(replies.wait_for(1, scaled(5s)));
   EXPECT_EQ(replies.items()[0].error().code(), v1::ERROR_CODE_UNKNOWN_ID);
   EXPECT_EQ(replies.items()[0].error().request_id(), id);
   // refused updates without one: on_error; a NaN position, then a 17th proxy
@@ -162,7 +162,7 @@ TEST_F(AsyncClientTest, ErrorsGoToTheirHandlerOrToOnError) {
   for (std::uint32_t proxy = 1; proxy <= 17; ++proxy) {
     client.send(proxy_update(proxy, {0, 1.2, 0.5}, proxy));
   }
-  ASSERT_TRUE(errors.wait_for(2, 5s));
+  ASSERT_TRUE(errors.wait_for(2, scaled(5s)));
   EXPECT_EQ(errors.items()[0].code(), v1::ERROR_CODE_BAD_REQUEST);
   EXPECT_EQ(errors.items()[0].message(), "position must be three numbers within ±1e6 m");
   EXPECT_EQ(errors.items()[1].code(), v1::ERROR_CODE_LIMIT_EXCEEDED);
@@ -204,11 +204,11 @@ TEST_F(AsyncClientTest, AServerThatShutsDownTellsTheClientAndEndsWhatWaits) {
   connect(client);
   const auto step = send_long_step(client);
   ASSERT_EQ(server_->stop(SIGTERM, 5s), 0);
-  ASSERT_TRUE(step->wait_for(1, 5s));
+  ASSERT_TRUE(step->wait_for(1, scaled(5s)));
   EXPECT_EQ(step->items()[0].error().code(), v1::ERROR_CODE_CANCELLED);
-  ASSERT_TRUE(events.wait_for(1, 5s));
+  ASSERT_TRUE(events.wait_for(1, scaled(5s)));
   EXPECT_EQ(events.items().back().kind(), v1::EVENT_KIND_SERVER_SHUTDOWN);
-  ASSERT_TRUE(errors.wait_for(1, 5s));
+  ASSERT_TRUE(errors.wait_for(1, scaled(5s)));
   EXPECT_EQ(errors.items()[0].message(), "the server closed the connection");
   EXPECT_FALSE(client.connected());
   // a request after the end fails at once instead of waiting for its timeout
@@ -224,7 +224,7 @@ TEST_F(AsyncClientTest, ARequestWaitingWhenTheServerDiesGetsAnError) {
   connect(client);
   const auto step = send_long_step(client);
   server_->stop(SIGKILL, 5s);
-  ASSERT_TRUE(step->wait_for(1, 5s));
+  ASSERT_TRUE(step->wait_for(1, scaled(5s)));
   EXPECT_TRUE(step->items()[0].has_error());
   EXPECT_FALSE(client.connected());
 }
@@ -236,7 +236,7 @@ TEST_F(AsyncClientTest, CloseEndsWhatWaitsWithoutCallingItAnError) {
   connect(client);
   const auto step = send_long_step(client);
   client.close();
-  ASSERT_TRUE(step->wait_for(1, 5s));
+  ASSERT_TRUE(step->wait_for(1, scaled(5s)));
   EXPECT_EQ(step->items()[0].error().message(), "the connection was closed");
   EXPECT_FALSE(client.connected());
   EXPECT_TRUE(errors.items().empty());

@@ -116,12 +116,12 @@ TEST_F(FeltCliTest, APinnedParticleStaysWhereItIs) {
   // watch the curtain, which still swings from its start, for a while
   auto watcher = greeted("watcher");
   watcher->subscribe_frames(60);
-  ASSERT_TRUE(watcher->next_frame(5s));  // may show the step before the pin
-  const auto first = watcher->next_frame(5s);
+  ASSERT_TRUE(watcher->next_frame(scaled(5s)));  // may show the step before the pin
+  const auto first = watcher->next_frame(scaled(5s));
   ASSERT_TRUE(first);
   std::optional<v1::Frame> last;
   do {
-    last = watcher->next_frame(5s);
+    last = watcher->next_frame(scaled(5s));
     ASSERT_TRUE(last);
   } while (last->step() < first->step() + 300);  // 0.3 s later
   EXPECT_EQ(vertex(last->bodies(0), 399), vertex(first->bodies(0), 399));

@@ -27,6 +27,7 @@
 #include "felt_client.hpp"
 #include "fuzz_settings.hpp"
 #include "protocol/feltd_process.hpp"
+#include "support/time_scale.hpp"
 #include "support/websocket_client.hpp"
 
 namespace felt::test {
@@ -203,7 +204,7 @@ enum class Outcome { kSucceeded, kRefused, kConnectionClosed, kNoAnswer };
 /// Waits for the reply to `request_id`, skipping frames and events.
 template <class Connection>
 Outcome await_reply(Connection& client, std::uint64_t request_id) {
-  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  const auto deadline = std::chrono::steady_clock::now() + scaled(20s);
   while (std::chrono::steady_clock::now() < deadline) {
     std::optional<v1::ServerMessage> message;
     try {

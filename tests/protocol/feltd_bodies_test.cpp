@@ -16,7 +16,7 @@ namespace {
 /// skipped).
 std::optional<v1::Frame> frame_from(Client& client, std::uint64_t step) {
   for (int i = 0; i < 200; ++i) {
-    auto frame = client.next_frame(5s);
+    auto frame = client.next_frame(scaled(5s));
     if (!frame || frame->step() >= step) return frame;
   }
   return std::nullopt;
@@ -59,7 +59,7 @@ TEST_F(FeltdTest, ASolidsIntegratorIsChosenAndChangedAmongThoseThatApply) {
       },
       v1::ERROR_CODE_BAD_SCENE);
   // the scene steps on (its first step may still be coming)
-  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  const auto deadline = std::chrono::steady_clock::now() + scaled(5s);
   while (client->stats().scene().steps() == 0 && std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(10ms);
   }
@@ -83,7 +83,7 @@ TEST_F(FeltdTest, ClothsSolidsAndCollidersComeAndGo) {
       client->add_collider(R"({"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]})").body();
   EXPECT_EQ(floor.kind(), "collider");
   client->subscribe_frames(60);
-  auto frame = client->next_frame(5s);
+  auto frame = client->next_frame(scaled(5s));
   ASSERT_TRUE(frame);
   EXPECT_EQ(frame->bodies_size(), 2);  // colliders have nothing to stream
   // the solid falls onto the floor and rests on it instead of falling through
@@ -172,7 +172,7 @@ TEST_F(FeltdTest, AChangeToABodyRemovedBeforeItsTurnIsAnUnknownId) {
   const std::uint64_t pin = client->send(message);
   std::map<std::uint64_t, v1::ServerMessage> replies;
   while (replies.size() < 4) {
-    const auto reply = client->receive(30s);
+    const auto reply = client->receive(scaled(30s));
     ASSERT_TRUE(reply);
     if (reply->request_id() != 0) replies[reply->request_id()] = *reply;
   }
@@ -327,7 +327,7 @@ TEST_F(FeltdTest, SubscriptionsChooseBodiesAndEndOnUnsubscribe) {
   client::FrameSubscription only_flag;
   only_flag.body_ids = {1};
   client->subscribe_frames(only_flag);
-  const auto frame = client->next_frame(5s);
+  const auto frame = client->next_frame(scaled(5s));
   ASSERT_TRUE(frame);
   ASSERT_EQ(frame->bodies_size(), 1);
   EXPECT_EQ(frame->bodies(0).name(), "flag");

@@ -72,7 +72,7 @@ TEST_F(FeltdTest, EveryRequestTypeGetsItsOwnReplyOrAnError) {
     reflection->MutableMessage(&message, field);  // the request with every field unset
     const std::uint64_t id = client->send(message);
     std::optional<v1::ServerMessage> reply;
-    while ((reply = client->receive(5s)) && reply->request_id() != id) {
+    while ((reply = client->receive(scaled(5s))) && reply->request_id() != id) {
     }
     ASSERT_TRUE(reply) << e.request;
     const auto* replied = v1::ServerMessage::descriptor()->FindFieldByNumber(reply->body_case());
@@ -91,7 +91,7 @@ TEST_F(FeltdTest, EveryRequestTypeGetsItsOwnReplyOrAnError) {
   std::string frame;
   wire::append_frame(frame, unknown);
   client->send_raw(frame);
-  const auto reply = client->receive(5s);
+  const auto reply = client->receive(scaled(5s));
   ASSERT_TRUE(reply);
   EXPECT_EQ(reply->error().code(), v1::ERROR_CODE_UNKNOWN_MESSAGE);
 }
@@ -115,7 +115,7 @@ TEST_F(FeltdTest, EightClientsTouchAndWatchOneSceneEachWithItsOwnProxy) {
     }
   }
   for (auto& client : clients) {
-    const auto frame = client->next_frame(5s);
+    const auto frame = client->next_frame(scaled(5s));
     ASSERT_TRUE(frame);
     EXPECT_EQ(frame->bodies(0).positions_size(), 3 * 400);
   }
@@ -142,7 +142,7 @@ TEST_F(FeltdTest, AClientThatVanishesMidStreamHurtsNoOne) {
   const auto left = steady->wait_event(v1::EVENT_KIND_CLIENT_LEFT, 5s);
   ASSERT_TRUE(left);
   EXPECT_EQ(left->client_name(), "vanishing");
-  EXPECT_TRUE(steady->next_frame(5s));
+  EXPECT_TRUE(steady->next_frame(scaled(5s)));
   EXPECT_FALSE(steady->proxy_update(0, {5, 5, 5}).in_contact());
   EXPECT_EQ(steady->stats().server().clients(), 1u);
 }
@@ -223,7 +223,7 @@ TEST_F(FeltdTest, ASlowReaderSkipsFramesButNeverReplies) {
       "bodies": [{"type": "cloth", "grid": {"nx": 100, "ny": 100}}]})");
   slow.send(message);
   std::optional<v1::ServerMessage> loaded;
-  while ((loaded = slow.receive(10s)) && !loaded->has_scene_loaded()) {
+  while ((loaded = slow.receive(scaled(10s))) && !loaded->has_scene_loaded()) {
   }
   ASSERT_TRUE(loaded);
   fast->join_scene(loaded->scene_loaded().scene_id());
@@ -240,7 +240,7 @@ TEST_F(FeltdTest, ASlowReaderSkipsFramesButNeverReplies) {
   std::size_t replies = 0;
   std::uint64_t skipped = 0, queued = 0, frames_skipped = 0;
   while (replies < ids.size()) {
-    const auto reply = slow.receive(10s);
+    const auto reply = slow.receive(scaled(10s));
     ASSERT_TRUE(reply);
     if (reply->has_frame()) skipped += reply->frame().skipped();
     if (reply->request_id() < ids.front()) continue;  // Welcome, Subscribed, frames, events
@@ -251,7 +251,7 @@ TEST_F(FeltdTest, ASlowReaderSkipsFramesButNeverReplies) {
   }
   // the frame that says how many were skipped may come after the replies queued before it
   for (int i = 0; i < 5 && skipped == 0; ++i) {
-    const auto frame = slow.receive(5s);
+    const auto frame = slow.receive(scaled(5s));
     ASSERT_TRUE(frame);
     if (frame->has_frame()) skipped += frame->frame().skipped();
   }
@@ -296,11 +296,11 @@ TEST_F(SmallBacklog, ClientsBodiesAndRequestsInFlightAreLimited) {
   auto third = greeted("third");
   Client fourth;
   connect(fourth);
-  const auto refused = fourth.receive(5s);
+  const auto refused = fourth.receive(scaled(5s));
   ASSERT_TRUE(refused);
   EXPECT_EQ(refused->error().code(), v1::ERROR_CODE_LIMIT_EXCEEDED);
   EXPECT_EQ(refused->error().message(), "the server already serves 3 clients (--max-clients)");
-  EXPECT_THROW(fourth.receive(5s), ClientError);  // and closed
+  EXPECT_THROW(fourth.receive(scaled(5s)), ClientError);  // and closed
   third->close();
   std::this_thread::sleep_for(100ms);
   greeted("fourth, once there is room");
@@ -317,7 +317,7 @@ TEST_F(SmallBacklog, ClientsBodiesAndRequestsInFlightAreLimited) {
   const std::vector<std::uint64_t> ids = send_steps(*first, 3, 20'000);
   int errors = 0, statuses = 0;
   while (errors + statuses < 3) {
-    const auto reply = first->receive(30s);
+    const auto reply = first->receive(scaled(30s));
     ASSERT_TRUE(reply);
     if (reply->has_error()) {
       EXPECT_EQ(reply->request_id(), ids[2]);
@@ -343,7 +343,7 @@ TEST_F(SmallBacklog, ListingsAreCountedAsRequestsInFlight) {
   }
   int refused = 0, listed = 0;
   while (refused + listed < 50) {
-    const auto reply = client->receive(30s);
+    const auto reply = client->receive(scaled(30s));
     ASSERT_TRUE(reply);
     if (reply->has_error()) {
       EXPECT_EQ(reply->error().code(), v1::ERROR_CODE_LIMIT_EXCEEDED);
@@ -385,7 +385,7 @@ TEST_F(FeltdTest, UnknownIdsAndNonFiniteNumbersGetErrorsAndNothingChanges) {
   expect_error([&] { client->create_scene(create); }, v1::ERROR_CODE_BAD_SCENE);
   // the scene runs on, finite
   client->subscribe_frames(0);
-  const auto frame = client->next_frame(5s);
+  const auto frame = client->next_frame(scaled(5s));
   ASSERT_TRUE(frame);
   for (float x : frame->bodies(0).positions()) ASSERT_TRUE(std::isfinite(x));
 }
@@ -424,21 +424,21 @@ TEST_F(ShortHelloDeadline, ConnectionsThatNeverSayHelloAreClosedAndFreeTheirSlot
   // meanwhile they hold every slot, and the greeted client is served
   Client refused;
   connect(refused);
-  const auto full = refused.receive(5s);
+  const auto full = refused.receive(scaled(5s));
   ASSERT_TRUE(full);
   EXPECT_EQ(full->error().code(), v1::ERROR_CODE_LIMIT_EXCEEDED);
   EXPECT_FALSE(patient->proxy_update(0, {5, 5, 5}).in_contact());
   for (Client* unknown : {&silent, &half}) {
-    const auto error = unknown->receive(5s);
+    const auto error = unknown->receive(scaled(5s));
     ASSERT_TRUE(error);
     EXPECT_EQ(error->error().code(), v1::ERROR_CODE_HELLO_REQUIRED) << error->error().message();
     EXPECT_EQ(error->error().request_id(), 0u);
-    EXPECT_THROW(unknown->receive(5s), ClientError);  // and closed
+    EXPECT_THROW(unknown->receive(scaled(5s)), ClientError);  // and closed
   }
   EXPECT_GE(std::chrono::steady_clock::now() - before, 500ms);
   // the greeted client, past its own deadline, is still served, and the slots are free again
   EXPECT_FALSE(patient->proxy_update(0, {5, 5, 5}).in_contact());
-  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  const auto deadline = std::chrono::steady_clock::now() + scaled(5s);
   while (patient->stats().server().clients() > 1 && std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(10ms);
   }
@@ -474,7 +474,7 @@ TEST_F(FeltdTest, ShutdownCancelsWhatScenesStillHadToDoThenSaysGoodbye) {
   ASSERT_EQ(server_->stop(SIGTERM, 5s), 0);
   std::vector<v1::ServerMessage> received;
   try {
-    while (auto message = busy->receive(5s)) received.push_back(*message);
+    while (auto message = busy->receive(scaled(5s))) received.push_back(*message);
     ADD_FAILURE() << "the connection was not closed";
   } catch (const ClientError&) {
   }

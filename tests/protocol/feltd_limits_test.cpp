@@ -73,7 +73,7 @@ TEST_F(FeltdSmallLimitsTest, FramesComeAtTheRateAskedUpToTheLimit) {
   expect_error([&] { client->subscribe_frames(1000); }, v1::ERROR_CODE_LIMIT_EXCEEDED,
                "--max-frame-rate");
   // the refused request left the subscription as it was
-  EXPECT_TRUE(client->next_frame(5s));
+  EXPECT_TRUE(client->next_frame(scaled(5s)));
 }
 
 TEST_F(FeltdSmallLimitsTest, ProxiesPastTheLimitAreRefusedOnOpenAndOnUpdate) {
@@ -113,18 +113,18 @@ TEST_F(FeltdSmallLimitsTest, AnInboundFramePastTheLimitClosesOnlyItsConnection) 
   Client exact;
   connect(exact);
   exact.send_raw(hello_of_size(1024));
-  const auto welcome = exact.receive(5s);
+  const auto welcome = exact.receive(scaled(5s));
   ASSERT_TRUE(welcome);
   EXPECT_TRUE(welcome->has_welcome());
   Client over;
   connect(over);
   over.send_raw(hello_of_size(1025));
-  const auto refused = over.receive(5s);
+  const auto refused = over.receive(scaled(5s));
   ASSERT_TRUE(refused);
   EXPECT_EQ(refused->error().code(), v1::ERROR_CODE_FRAME_TOO_LARGE);
   EXPECT_EQ(refused->error().request_id(), 0u);
   EXPECT_EQ(refused->error().message(), "frame of 1025 bytes exceeds the limit of 1024");
-  EXPECT_THROW(over.receive(5s), ClientError);  // and closed
+  EXPECT_THROW(over.receive(scaled(5s)), ClientError);  // and closed
   EXPECT_FALSE(other->proxy_update(0, {5, 5, 5}).in_contact());
   EXPECT_FALSE(exact.proxy_update(0, {5, 5, 5}).in_contact());
 }

@@ -63,7 +63,7 @@ TEST_F(FeltdTest, LoadedSceneStreamsFramesThatMove) {
   const v1::Subscribed subscribed = client.subscribe_frames(30, true);
   EXPECT_EQ(subscribed.scene_id(), loaded.scene_id());
 
-  const auto first = client.next_frame(5s);
+  const auto first = client.next_frame(scaled(5s));
   ASSERT_TRUE(first);
   ASSERT_EQ(first->bodies_size(), 1);
   EXPECT_EQ(first->scene_id(), loaded.scene_id());
@@ -73,7 +73,7 @@ TEST_F(FeltdTest, LoadedSceneStreamsFramesThatMove) {
 
   // the free bottom corner falls while the cloth sags
   std::optional<v1::Frame> later;
-  for (int i = 0; i < 10; ++i) later = client.next_frame(5s);
+  for (int i = 0; i < 10; ++i) later = client.next_frame(scaled(5s));
   ASSERT_TRUE(later);
   EXPECT_GT(later->step(), first->step());
   EXPECT_EQ(later->bodies(0).triangles_size(), 0);
@@ -86,7 +86,7 @@ TEST_F(FeltdTest, ProxyPushedIntoTheClothIsPushedBackOut) {
   connect(client);
   client.hello("test");
   client.subscribe_frames(60, true);
-  const auto frame = client.next_frame(5s);
+  const auto frame = client.next_frame(scaled(5s));
   ASSERT_TRUE(frame);
   // put the proxy (radius 2 cm in the default scene) 1 cm in front of a middle vertex
   const v1::BodyFrame& body = frame->bodies(0);
@@ -191,9 +191,9 @@ TEST_F(FeltdLiveClothTest, AClientFeelsSlidesAlongAndGrabsAMovingCloth) {
   // lifted out of the sag: the frames kept while the updates went out come first, so look
   // through them to the live ones
   double height = 0;
-  const auto until = std::chrono::steady_clock::now() + 5s;
+  const auto until = std::chrono::steady_clock::now() + scaled(5s);
   while (height <= 0.9 && std::chrono::steady_clock::now() < until) {
-    const std::optional<v1::Frame> frame = client.next_frame(1s);
+    const std::optional<v1::Frame> frame = client.next_frame(scaled(1s));
     if (frame) height = vertex(frame->bodies(0), static_cast<int>(held))[1];
   }
   EXPECT_GT(height, 0.9);
@@ -266,7 +266,7 @@ TEST_F(FeltdTest, SoftSolidsStreamTheirFineSurfaceAndCanBeTouched) {
     EXPECT_EQ(body.triangles(), 4800u);
   }
   client.subscribe_frames(30, true);
-  const auto first = client.next_frame(5s);
+  const auto first = client.next_frame(scaled(5s));
   ASSERT_TRUE(first);
   ASSERT_EQ(first->bodies_size(), 3);
   EXPECT_EQ(first->bodies(2).positions_size(), 3 * 2402);
@@ -298,7 +298,7 @@ TEST_F(FeltdTest, SoftSolidsStreamTheirFineSurfaceAndCanBeTouched) {
 
   // the cubes fall and settle onto each other; their surfaces stay finite
   std::optional<v1::Frame> later;
-  for (int i = 0; i < 10; ++i) later = client.next_frame(5s);
+  for (int i = 0; i < 10; ++i) later = client.next_frame(scaled(5s));
   ASSERT_TRUE(later);
   EXPECT_LT(vertex(later->bodies(2), highest)[1], vertex(top, highest)[1]);
   for (const auto& body : later->bodies()) {
@@ -327,9 +327,9 @@ TEST_F(FeltdTest, UnrecoverableStepsReachSubscribersAsEvents) {
                  "springs": { "structural": { "stiffness": 1e8 } } }] })");
   client.subscribe_frames(30);
   std::vector<v1::SceneEvent> events;
-  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  const auto deadline = std::chrono::steady_clock::now() + scaled(5s);
   while (events.empty() && std::chrono::steady_clock::now() < deadline) {
-    ASSERT_TRUE(client.next_frame(5s));
+    ASSERT_TRUE(client.next_frame(scaled(5s)));
     events = client.take_events();
   }
   ASSERT_FALSE(events.empty());
@@ -370,18 +370,18 @@ TEST_F(FeltdTest, GarbageClosesOnlyThatConnection) {
   connect(bad);
   // a 5-byte frame ("garba": field 12 with wire type 7) that is not a ClientMessage
   bad.send_raw("\x05garbage-that-is-not-protobuf\xff\xff");
-  const auto reply = bad.receive(5s);
+  const auto reply = bad.receive(scaled(5s));
   ASSERT_TRUE(reply);
   ASSERT_TRUE(reply->has_error());
   EXPECT_EQ(reply->error().code(), v1::ERROR_CODE_MALFORMED_FRAME);
-  EXPECT_THROW(bad.receive(5s), ClientError);  // then the server hangs up
+  EXPECT_THROW(bad.receive(scaled(5s)), ClientError);  // then the server hangs up
 
   Client huge;
   connect(huge);
   std::string prefix;
   wire::append_varint(prefix, 1ull << 40);
   huge.send_raw(prefix);
-  const auto too_large = huge.receive(5s);
+  const auto too_large = huge.receive(scaled(5s));
   ASSERT_TRUE(too_large);
   EXPECT_EQ(too_large->error().code(), v1::ERROR_CODE_FRAME_TOO_LARGE);
 
@@ -404,10 +404,10 @@ TEST_F(FeltdTest, BodiesChangeIntegratorAndPinsAtRunTime) {
   client.pin_particles(0, {399}, {});
   client.subscribe_frames(60);
   std::optional<v1::Frame> first;
-  for (int i = 0; i < 3; ++i) first = client.next_frame(5s);  // past the pin's step
+  for (int i = 0; i < 3; ++i) first = client.next_frame(scaled(5s));  // past the pin's step
   ASSERT_TRUE(first);
   std::optional<v1::Frame> later;
-  for (int i = 0; i < 10; ++i) later = client.next_frame(5s);
+  for (int i = 0; i < 10; ++i) later = client.next_frame(scaled(5s));
   ASSERT_TRUE(later);
   EXPECT_GT(later->step(), first->step());
   EXPECT_EQ(vertex(later->bodies(0), 399), vertex(first->bodies(0), 399));
@@ -428,7 +428,7 @@ TEST_F(FeltdTest, ExitsCleanlyOnSigterm) {
   connect(client);
   client.hello("test");
   client.subscribe_frames();
-  ASSERT_TRUE(client.next_frame(5s));
+  ASSERT_TRUE(client.next_frame(scaled(5s)));
   EXPECT_EQ(server_->stop(SIGTERM, 5s), 0);
   EXPECT_FALSE(server_->running());
 }

@@ -216,7 +216,7 @@ TEST_F(FeltdTest, ASavedStateComesBackExactlyAndCanTravelThroughTheClient) {
   client->step(300);
   EXPECT_EQ(client->restore_state(saved.state_id()).step(), saved.step());
   client->subscribe_frames(0);
-  const auto frame = client->next_frame(5s);
+  const auto frame = client->next_frame(scaled(5s));
   ASSERT_TRUE(frame);
   EXPECT_EQ(frame->step(), saved.step());
   for (int v = 0; v < 400; v += 37) {
@@ -230,7 +230,7 @@ TEST_F(FeltdTest, ASavedStateComesBackExactlyAndCanTravelThroughTheClient) {
   client->restore_state(moved);
   client->step(1);
   std::optional<v1::Frame> later;
-  while ((later = client->next_frame(5s)) && later->step() != saved.step() + 1) {
+  while ((later = client->next_frame(scaled(5s))) && later->step() != saved.step() + 1) {
   }
   ASSERT_TRUE(later);
   EXPECT_NEAR(later->bodies(0).positions(0), body.positions(0) + 1, 1e-3);
@@ -334,7 +334,7 @@ TEST_F(ServerScenesControlledByNone, ClientsWatchTouchAndChangeBodiesButDoNotCon
   expect_error([&] { client->save_state(); }, v1::ERROR_CODE_PERMISSION_DENIED, says);
   EXPECT_FALSE(client->stats().scene().paused());
   client->subscribe_frames(60);
-  EXPECT_TRUE(client->next_frame(5s));
+  EXPECT_TRUE(client->next_frame(scaled(5s)));
   // a scene a client creates is its own to control
   v1::CreateScene create;
   create.set_name("mine");
@@ -346,7 +346,7 @@ TEST_F(FeltdTest, LeavingASceneEndsItsFramesAndProxies) {
   auto client = greeted("leaver");
   const std::uint64_t scene = client->stats().scene().scene_id();
   client->subscribe_frames(60);
-  ASSERT_TRUE(client->next_frame(5s));
+  ASSERT_TRUE(client->next_frame(scaled(5s)));
   EXPECT_EQ(client->leave_scene().scene_id(), scene);
   expect_error([&] { client->proxy_update(0, {0, 1, 0}); }, v1::ERROR_CODE_NO_SCENE);
   expect_error([&] { client->pause(); }, v1::ERROR_CODE_NO_SCENE);
@@ -366,10 +366,10 @@ TEST_F(FeltdTest, APausedSceneStillShowsBodiesComingAndGoing) {
   client->load_scene_by_name("default");
   client->pause();
   client->subscribe_frames(60);
-  ASSERT_TRUE(client->next_frame(5s));
+  ASSERT_TRUE(client->next_frame(scaled(5s)));
   const std::uint32_t added = client->add_body(small_cloth_json()).body().body_id();
   std::optional<v1::Frame> frame;
-  while ((frame = client->next_frame(5s)) && frame->bodies_size() < 2) {
+  while ((frame = client->next_frame(scaled(5s))) && frame->bodies_size() < 2) {
   }
   ASSERT_TRUE(frame);  // without a step
   EXPECT_EQ(frame->bodies(1).body_id(), added);
@@ -389,7 +389,7 @@ TEST_F(FeltdTest, RescuedStepsAreToldAsSuch) {
 TEST_F(FeltdTest, StatsSayWhereTheStepsSpendTheirTime) {
   // the default scene's curtain: the cloth stages, and none of the solids' (it has none)
   auto client = greeted("profiler");
-  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  const auto deadline = std::chrono::steady_clock::now() + scaled(5s);
   v1::SceneStats stats = client->stats().scene();
   while (stats.stages().empty() && std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(50ms);

@@ -30,7 +30,7 @@ TEST_F(FeltdSpinningTest, HapticUpdatesKeepIdleCoresAwakeUntilTheyStop) {
   connect(client);
   client.hello("test");
   // the spinners take only idle cores: on a machine busy with other tests that may take a while
-  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  const auto deadline = std::chrono::steady_clock::now() + scaled(20s);
   while (sched_idle_threads(pid).ticks == asleep.ticks &&
          std::chrono::steady_clock::now() < deadline) {
     client.proxy_update(0, {5, 5, 5});
@@ -77,7 +77,7 @@ TEST_F(FeltdTest, ThreadsOffTheHapticPathStepAsideForTheNetworkThreads) {
            nices_of(server_->pid(), "felt-frames") == std::vector<int>(1, aside) &&
            nices_of(server_->pid(), "felt-servo").size() == 1;
   };
-  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  const auto deadline = std::chrono::steady_clock::now() + scaled(5s);
   while (!settled() && std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(10ms);
   }

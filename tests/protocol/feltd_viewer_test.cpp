@@ -52,7 +52,7 @@ TEST_F(FeltdTest, CollidersAreDescribedWithTheirShapes) {
 /// `touch` keeps that client's proxy pressed into the curtain.
 template <class Touch>
 std::optional<v1::ProxyPresence> presence_of(Client& viewer, const std::string& name, Touch touch) {
-  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  const auto deadline = std::chrono::steady_clock::now() + scaled(5s);
   while (std::chrono::steady_clock::now() < deadline) {
     touch();
     const auto frame = viewer.next_frame(100ms);
@@ -84,10 +84,10 @@ TEST_F(FeltdTest, FramesShowEveryClientsProxiesByName) {
   EXPECT_TRUE(own->own());
   // a closed proxy is gone from the frames
   bob->close_proxy(7);
-  alice->next_frame(1s);
+  alice->next_frame(scaled(1s));
   bool gone = false;
   for (int i = 0; i < 20 && !gone; ++i) {
-    const auto frame = alice->next_frame(1s);
+    const auto frame = alice->next_frame(scaled(1s));
     gone = frame && frame->proxies_size() == 0;
   }
   EXPECT_TRUE(gone);
@@ -102,9 +102,9 @@ TEST_F(FeltdTest, ScalarsAreAClothsStrainPerVertexOnlyWhenAsked) {
   client->subscribe_frames(subscription);
   // the first frames may show the curtain as it starts, not yet stretched: look 0.1 s in
   std::optional<v1::Frame> frame;
-  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  const auto deadline = std::chrono::steady_clock::now() + scaled(5s);
   do {
-    frame = client->next_frame(5s);
+    frame = client->next_frame(scaled(5s));
   } while (frame && frame->step() < 100 && std::chrono::steady_clock::now() < deadline);
   ASSERT_TRUE(frame);
   ASSERT_GE(frame->step(), 100u);
@@ -119,7 +119,7 @@ TEST_F(FeltdTest, ScalarsAreAClothsStrainPerVertexOnlyWhenAsked) {
   EXPECT_GT(largest, 0.0f);
   EXPECT_LT(largest, 0.5f);
   client->subscribe_frames(60);
-  const auto plain = client->next_frame(5s);
+  const auto plain = client->next_frame(scaled(5s));
   ASSERT_TRUE(plain);
   EXPECT_EQ(plain->bodies(0).scalars_size(), 0);
 }
@@ -163,7 +163,7 @@ TEST_F(FeltdTest, StatsNameEachBodysIntegratorAndStrain) {
   set.set_integrator("rk4");
   client->set_body_parameters(set);
   // statistics are measured every half second
-  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  const auto deadline = std::chrono::steady_clock::now() + scaled(5s);
   v1::BodyStats body;
   while (std::chrono::steady_clock::now() < deadline) {
     const auto stats = client->stats();

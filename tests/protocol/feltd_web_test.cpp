@@ -82,7 +82,7 @@ class FeltdWebTest : public FeltdTest {
   /// Waits for the next message that is not a frame or an event.
   static v1::ServerMessage next_reply(WebSocketClient& client) {
     while (true) {
-      auto message = client.receive(5s);
+      auto message = client.receive(scaled(5s));
       if (!message) throw std::runtime_error("no reply within 5 s");
       if (!message->has_frame() && !message->has_event()) return *message;
     }
@@ -94,7 +94,7 @@ class FeltdWebTest : public FeltdTest {
     EXPECT_EQ(error.error().code(), code) << error.error().message();
     EXPECT_EQ(error.request_id(), 0u);
     EXPECT_THROW(
-        while (true) { client.receive(5s); }, ClientError);
+        while (true) { client.receive(scaled(5s)); }, ClientError);
   }
 
   PageFolder page_;
@@ -144,7 +144,7 @@ TEST_F(FeltdWebTest, AWebSocketSessionIsASessionLikeAnyOther) {
   EXPECT_TRUE(page.request(subscribe).has_subscribed());
   int frames = 0;
   while (frames < 3) {
-    auto message = page.receive(5s);
+    auto message = page.receive(scaled(5s));
     ASSERT_TRUE(message);
     if (!message->has_frame()) continue;
     ++frames;
@@ -240,7 +240,7 @@ TEST_F(FeltdWebTest, ShutdownTellsWebSocketClientsAndClosesCleanly) {
   bool told = false;
   try {
     while (true) {
-      auto message = page->receive(5s);
+      auto message = page->receive(scaled(5s));
       if (!message) break;
       if (message->has_event() && message->event().kind() == v1::EVENT_KIND_SERVER_SHUTDOWN) {
         told = true;
