@@ -15,6 +15,7 @@ ClothBody::ClothBody(std::string name, std::shared_ptr<const ClothModel> model, 
       params_(params),
       integrator_(std::move(integrator)) {
   FELT_CHECK(model_ && integrator_);
+  spring_colouring_ = colour_springs(model_->springs, model_->particle_count());
   const std::size_t n = model_->particle_count();
   state_.x = model_->rest_positions;
   state_.v.assign(n, Vec3::Zero());
@@ -181,13 +182,25 @@ bool ClothBody::linear_force_pairs(std::vector<LinearPair>& pairs) const {
   return !pairs.empty();
 }
 
-bool ClothBody::distance_constraints(std::vector<DistanceConstraint>& constraints) const {
+bool ClothBody::distance_constraints(ConstraintClasses& constraints) const {
   constraints.clear();
-  for (const Spring& s : model_->springs) {
-    const SpringParams& sp = params_.spring(s.kind);
-    if (sp.enabled) constraints.push_back({s.i, s.j, s.rest_length, sp.stiffness, sp.damping});
+  std::uint32_t begin = 0;
+  for (const std::uint32_t end : spring_colouring_.class_ends) {
+    for (std::uint32_t k = begin; k < end; ++k) {
+      const Spring& s = model_->springs[spring_colouring_.order[k]];
+      const SpringParams& sp = params_.spring(s.kind);
+      if (sp.enabled) {
+        constraints.constraints.push_back({s.i, s.j, s.rest_length, sp.stiffness, sp.damping});
+      }
+    }
+    // a class whose springs are all disabled is left out
+    const std::size_t size = constraints.constraints.size();
+    if (size > (constraints.class_ends.empty() ? 0 : constraints.class_ends.back())) {
+      constraints.class_ends.push_back(size);
+    }
+    begin = end;
   }
-  return !constraints.empty();
+  return !constraints.constraints.empty();
 }
 
 void ClothBody::applied_forces(Real t, std::span<Vec3> f) const {

@@ -9,6 +9,7 @@
 #include "core/cloth/cloth_model.hpp"
 #include "core/cloth/constraint_force.hpp"
 #include "core/cloth/particle_constraint.hpp"
+#include "core/cloth/spring_colouring.hpp"
 #include "core/cloth/stretch_limiter.hpp"
 #include "core/integrate/dynamic_system.hpp"
 #include "core/integrate/integrator.hpp"
@@ -128,8 +129,9 @@ class ClothBody final : public DynamicSystem {
   /// The enabled structural springs' linear part −k_s l and their damping, taken isotropic
   /// (Eberhardt et al. 2000, thesis 1 §4.4); shear and bend stay explicit.
   bool linear_force_pairs(std::vector<LinearPair>& pairs) const override;
-  /// Every enabled spring, with its kind's stiffness and damping.
-  bool distance_constraints(std::vector<DistanceConstraint>& constraints) const override;
+  /// Every enabled spring, with its kind's stiffness and damping, in the classes of the
+  /// springs' colouring.
+  bool distance_constraints(ConstraintClasses& constraints) const override;
   void compute_forces_besides_constraints(std::span<const Vec3> x, std::span<const Vec3> v, Real t,
                                           std::span<Vec3> f) const override;
 
@@ -147,6 +149,7 @@ class ClothBody final : public DynamicSystem {
 
   std::string name_;
   std::shared_ptr<const ClothModel> model_;
+  SpringColouring spring_colouring_;  ///< of model_'s springs, for distance_constraints
   ClothParams params_;
   std::unique_ptr<Integrator> integrator_;
   ParticleState state_;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "core/math/types.hpp"
 
@@ -15,6 +16,19 @@ struct DistanceConstraint {
   Real rest_length = 0;  ///< r, m
   Real stiffness = 0;    ///< k, N/m; 0 leaves the damping alone
   Real damping = 0;      ///< c, N·s/m, along the constraint
+};
+
+/// A system's distance constraints in classes none of which has two constraints on one
+/// particle, so that projecting them class by class is the same in any order within a class.
+struct ConstraintClasses {
+  std::vector<DistanceConstraint> constraints;  ///< class by class
+  std::vector<std::size_t>
+      class_ends;  ///< class c is constraints[class_ends[c − 1], class_ends[c])
+
+  void clear() {
+    constraints.clear();
+    class_ends.clear();
+  }
 };
 
 }  // namespace felt

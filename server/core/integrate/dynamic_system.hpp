@@ -39,8 +39,9 @@ class DynamicSystem {
   }
 
   /// Replaces `constraints` with the springs a position-based integrator (XPBD) enforces as
-  /// compliant distance constraints instead of as forces. False when the system has none.
-  virtual bool distance_constraints(std::vector<DistanceConstraint>& constraints) const {
+  /// compliant distance constraints instead of as forces, in classes that share no particle.
+  /// False when the system has none.
+  virtual bool distance_constraints(ConstraintClasses& constraints) const {
     constraints.clear();
     return false;
   }

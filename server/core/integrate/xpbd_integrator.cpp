@@ -31,25 +31,36 @@ void XpbdIntegrator::step(const DynamicSystem& system, ParticleState& state, Rea
 void XpbdIntegrator::project_constraints(std::span<const Real> inv_mass, Real h,
                                          ParticleState& state) const {
   std::vector<Vec3>& x = state.x;
-  for (const DistanceConstraint& c : constraints_) {
-    const Real w = inv_mass[c.i] + inv_mass[c.j];
-    if (w == 0) continue;
-    const Vec3 d = x[c.i] - x[c.j];
-    const Real length = d.norm();
-    if (length <= Real{1e-12}) continue;  // coincident particles: no direction to push along
-    const Vec3 normal = d / length;       // ∇_i C; ∇_j C = −normal
-    const Real violation = length - c.rest_length;
-    const Real approach = normal.dot((x[c.i] - x_prev_[c.i]) - (x[c.j] - x_prev_[c.j]));
-    // XPBD eq. 18 with the damping of eq. 26, λ = 0 (its one iteration this substep),
-    // α̃ = α/h², α = 1/k, γ = α̃ β̃/h = c/(k h), all multiplied by k h² so that k = 0 (a pure
-    // damper) and k → ∞ (a rigid rod) stay finite:
-    //   Δλ = −(k h² C + c h ∇C·(x − x_prev)) / ((k h² + c h) w + 1)
-    const Real kh2 = c.stiffness * h * h;
-    const Real ch = c.damping * h;
-    const Real delta_lambda = -(kh2 * violation + ch * approach) / ((kh2 + ch) * w + 1);
-    x[c.i] += inv_mass[c.i] * delta_lambda * normal;
-    x[c.j] -= inv_mass[c.j] * delta_lambda * normal;
+  std::size_t begin = 0;
+  // class by class; within a class no two constraints share a particle, so their order is moot
+  for (const std::size_t end : constraints_.class_ends) {
+    for (const DistanceConstraint& c :
+         std::span(constraints_.constraints).subspan(begin, end - begin)) {
+      project(c, inv_mass, h, x);
+    }
+    begin = end;
   }
+}
+
+void XpbdIntegrator::project(const DistanceConstraint& c, std::span<const Real> inv_mass, Real h,
+                             std::vector<Vec3>& x) const {
+  const Real w = inv_mass[c.i] + inv_mass[c.j];
+  if (w == 0) return;
+  const Vec3 d = x[c.i] - x[c.j];
+  const Real length = d.norm();
+  if (length <= Real{1e-12}) return;  // coincident particles: no direction to push along
+  const Vec3 normal = d / length;     // ∇_i C; ∇_j C = −normal
+  const Real violation = length - c.rest_length;
+  const Real approach = normal.dot((x[c.i] - x_prev_[c.i]) - (x[c.j] - x_prev_[c.j]));
+  // XPBD eq. 18 with the damping of eq. 26, λ = 0 (its one iteration this substep),
+  // α̃ = α/h², α = 1/k, γ = α̃ β̃/h = c/(k h), all multiplied by k h² so that k = 0 (a pure
+  // damper) and k → ∞ (a rigid rod) stay finite:
+  //   Δλ = −(k h² C + c h ∇C·(x − x_prev)) / ((k h² + c h) w + 1)
+  const Real kh2 = c.stiffness * h * h;
+  const Real ch = c.damping * h;
+  const Real delta_lambda = -(kh2 * violation + ch * approach) / ((kh2 + ch) * w + 1);
+  x[c.i] += inv_mass[c.i] * delta_lambda * normal;
+  x[c.j] -= inv_mass[c.j] * delta_lambda * normal;
 }
 
 }  // namespace felt
