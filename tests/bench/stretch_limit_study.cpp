@@ -23,6 +23,7 @@
 #include "bench_scene.hpp"
 #include "core/cloth/cloth_grid.hpp"
 #include "core/cloth/hanging_cloth.hpp"
+#include "core/integrate/xpbd_integrator.hpp"
 #include "core/world/world.hpp"
 
 namespace felt {
@@ -130,6 +131,95 @@ void served_table() {
   }
 }
 
+/// An integrator (and stretch-limit cap) for the served scene, against the one it has.
+struct Candidate {
+  std::string label;
+  std::unique_ptr<Integrator> (*make)();
+  int iterations;  ///< the limiter's sweep cap; 0 keeps the scene's
+};
+
+struct CandidateRun {
+  World world;
+  double seconds = 0, integration_seconds = 0, limit_seconds = 0;
+  std::uint64_t steps = 0, rescued = 0, unrecoverable = 0;
+  Real max_strain = 0;
+  Real largest_rise = 0;  ///< the largest rise of the mechanical energy in one step, J
+  Real kinetic_at_3s = 0;
+};
+
+Real mechanical_energy(const ClothBody& body) {
+  return body.kinetic_energy() + body.elastic_energy() + body.gravitational_energy();
+}
+
+void served_candidates_table() {
+  // A/B in one run: every candidate's world steps once in turn, the order rotating every step,
+  // so that a change of the machine's load falls on all of them alike
+  const Candidate candidates[] = {
+      {"kang (the scene's)", [] { return make_integrator("kang"); }, 0},
+      {"xpbd, 1 substep",
+       []() -> std::unique_ptr<Integrator> { return std::make_unique<XpbdIntegrator>(1); }, 0},
+      {"xpbd, 2 substeps",
+       []() -> std::unique_ptr<Integrator> { return std::make_unique<XpbdIntegrator>(2); }, 0},
+      {"kang, at most 3 sweeps", [] { return make_integrator("kang"); }, 3},
+      {"imex", [] { return make_integrator("imex"); }, 0},
+      {"desbrun", [] { return make_integrator("desbrun"); }, 0},
+  };
+  std::vector<CandidateRun> runs;
+  for (const Candidate& c : candidates) {
+    World world = bench::load_bench_scene("service_bench.json").world;
+    ClothBody& sheet = world.cloths()[0];
+    sheet.set_integrator(c.make());
+    if (c.iterations > 0) {
+      ClothParams params = sheet.params();
+      params.stretch.iterations = c.iterations;
+      sheet.set_params(params);
+    }
+    runs.push_back({std::move(world)});
+  }
+  std::vector<Real> energy(runs.size());
+  for (std::size_t k = 0; k < runs.size(); ++k)
+    energy[k] = mechanical_energy(runs[k].world.cloths()[0]);
+  for (std::uint64_t n = 0; runs[0].world.time() < kSimTime - 1e-9; ++n) {
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      const std::size_t k = (n + i) % runs.size();
+      CandidateRun& r = runs[k];
+      const auto start = Clock::now();
+      const StepReport report = r.world.step();
+      r.seconds += std::chrono::duration<double>(Clock::now() - start).count();
+      r.integration_seconds += report.cloth_profile[StepStage::kIntegration];
+      r.limit_seconds += report.cloth_profile[StepStage::kStretchLimit];
+      ++r.steps;
+      if (report.flags & kStepRescued) ++r.rescued;
+      if (report.flags & kStepUnrecoverable) ++r.unrecoverable;
+      const ClothBody& body = r.world.cloths()[0];
+      r.max_strain = std::max(r.max_strain, body.max_strain());
+      const Real e = mechanical_energy(body);
+      r.largest_rise = std::max(r.largest_rise, e - energy[k]);
+      energy[k] = e;
+      if (std::abs(r.world.time() - 3) < 1e-9) r.kinetic_at_3s = body.kinetic_energy();
+    }
+  }
+  std::printf(
+      "\nscenes/service_bench.json (100 x 100, 2 ms, limit 10 %%): candidates stepped in turn\n\n"
+      "| integrator | ms/step | ÷ the scene's | integrator ms/step | limiter ms/step | largest "
+      "strain | KE at 3 s (J) | KE at 5 s (J) | "
+      "largest energy rise in a step (J) | rescued/unrecoverable "
+      "|\n|---|---|---|---|---|---|---|---|---|---|\n");
+  const double base = runs[0].seconds / static_cast<double>(runs[0].steps);
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const CandidateRun& r = runs[k];
+    const double ms = r.seconds / static_cast<double>(r.steps);
+    std::printf("| %s | %.3f | %.2f | %.3f | %.3f | %.4f | %.2g | %.2g | %.2g | %llu/%llu |\n",
+                candidates[k].label.c_str(), 1e3 * ms, ms / base,
+                1e3 * r.integration_seconds / static_cast<double>(r.steps),
+                1e3 * r.limit_seconds / static_cast<double>(r.steps), r.max_strain, r.kinetic_at_3s,
+                r.world.cloths()[0].kinetic_energy(), r.largest_rise,
+                static_cast<unsigned long long>(r.rescued),
+                static_cast<unsigned long long>(r.unrecoverable));
+  }
+  std::fflush(stdout);
+}
+
 void corners_table(std::uint32_t n) {
   // most of the weight carried by the limit through the few springs at two corners
   const Run corner_reference =
@@ -157,5 +247,6 @@ int main(int argc, char** argv) {
   if (wanted("top_row")) top_row_table(n);
   if (wanted("served")) served_table();
   if (wanted("corners")) corners_table(n);
+  if (wanted("served_candidates")) served_candidates_table();
   return 0;
 }
