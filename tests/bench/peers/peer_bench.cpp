@@ -15,7 +15,9 @@
 // Pareto front) and the Markdown tables into OUT_DIR/peers.md between the markers of size N.
 // Progress on stderr. scripts/bench-peers builds it, runs it into docs/results/ at 40 and 100
 // and draws the plot; a size below 40 is a smoke test. --tables-only runs nothing: it reads
-// OUT_DIR/peers_N.csv from an earlier run and writes the tables again.
+// OUT_DIR/peers_N.csv from an earlier run and writes the tables again. --only runs only the
+// Felt configurations of the integrators listed and takes every other row from the earlier run's
+// OUT_DIR/peers_N.csv (the stamp above the tables says so).
 
 #include <algorithm>
 #include <cmath>
@@ -219,7 +221,8 @@ std::vector<Measured> read_csv(const std::filesystem::path& path) {
 int main(int argc, char** argv) {
   using namespace felt::peers;
   namespace study = felt::study;
-  const char* usage = "usage: peer_bench OUT_DIR --size N [--rounds R | --tables-only]\n";
+  const char* usage =
+      "usage: peer_bench OUT_DIR --size N [--rounds R [--only INTEGRATOR,...] | --tables-only]\n";
   if (argc < 2) {
     std::fprintf(stderr, "%s", usage);
     return 2;
@@ -227,6 +230,8 @@ int main(int argc, char** argv) {
   const std::filesystem::path out_dir = argv[1];
   int rounds = 3;
   bool tables_only = false;
+  std::string only_list;          // --only's argument
+  std::vector<std::string> only;  // Felt integrators to run again; empty: everything
   std::uint32_t n = 0;
   for (int a = 2; a < argc; ++a) {
     if (std::strcmp(argv[a], "--size") == 0 && a + 1 < argc) {
@@ -235,6 +240,10 @@ int main(int argc, char** argv) {
       rounds = std::max(1, std::atoi(argv[++a]));
     } else if (std::strcmp(argv[a], "--tables-only") == 0) {
       tables_only = true;
+    } else if (std::strcmp(argv[a], "--only") == 0 && a + 1 < argc) {
+      only_list = argv[++a];
+      std::stringstream list(only_list);
+      for (std::string name; std::getline(list, name, ',');) only.push_back(name);
     } else {
       std::fprintf(stderr, "peer_bench: unknown argument %s\n%s", argv[a], usage);
       return 2;
@@ -253,7 +262,11 @@ int main(int argc, char** argv) {
     stamp = study::format(
         "Measured by `peer_bench --size %u`; tables recomputed from peers_%u.csv.", n, n);
   } else {
-    for (const PeerConfig& c : peer_configs(n)) all.push_back({c, {}, {}});
+    for (const PeerConfig& c : peer_configs(n)) {
+      if (only.empty() || (!c.bullet && std::ranges::find(only, c.felt.integrator) != only.end())) {
+        all.push_back({c, {}, {}});
+      }
+    }
     study::Progress progress(static_cast<int>(all.size()) * rounds);
     for (int r = 0; r < rounds; ++r) {
       for (Measured& m : all) {
@@ -270,7 +283,24 @@ int main(int argc, char** argv) {
       m.median = median_outcome(m.runs);
       m.run_count = m.runs.size();
     }
-    stamp = study::generated_by(study::format("peer_bench --size %u", n), progress.elapsed());
+    const std::string program =
+        only.empty() ? study::format("peer_bench --size %u", n)
+                     : study::format("peer_bench --size %u --only %s", n, only_list.c_str());
+    stamp = study::generated_by(program, progress.elapsed());
+    if (!only.empty()) {
+      // the rows not run again come from the earlier run's CSV, measured under its load
+      std::size_t kept = 0;
+      for (Measured& earlier : read_csv(csv)) {
+        const bool run_again = std::ranges::any_of(
+            all, [&](const Measured& m) { return m.config.label() == earlier.config.label(); });
+        if (!run_again) {
+          all.push_back(std::move(earlier));
+          ++kept;
+        }
+      }
+      stamp += study::format(" The other %zu rows are an earlier run's, read from peers_%u.csv.",
+                             kept, n);
+    }
   }
   set_sag_reached(all);
   mark_pareto(all);
