@@ -6,15 +6,13 @@
 
 #include <sched.h>
 
+#include "runtime/proxy_render.hpp"
 #include "scheduling/thread_latency.hpp"
 #include "scheduling/thread_name.hpp"
 
 namespace felt {
 namespace {
 
-// the most triangles a local model carries: a 10 cm radius holds a few hundred of a fine cloth;
-// this many (about 600 KB) is a proxy asking for far more than it can reach
-constexpr std::size_t kMaxLocalModelTriangles = 8192;
 // a pass of the physics thread takes steps for at most this long of its clock before it
 // publishes, reports and answers requests: the cadence clients see a scene at however short its
 // steps, and however many are due
@@ -100,27 +98,12 @@ ProxyOutput SceneRunner::render(HapticProxy& proxy, const Vec3& device, std::uin
                                 const LocalContact* local) {
   const auto frame = haptic_frames_.current();
   const SteadyClock::time_point now = SteadyClock::now();
-  ProxyOutput out = proxy.update(frame->surface(now), proxy.seconds_since_last(now), device,
-                                 buttons, reactions_, local);
-  LocalModelFeed* feed = proxy.local_model();
-  if (feed && feed->due(frame->to->version, now)) {
-    // the newer snapshot, which the render reaches one interval after it was published
-    // (HapticFrame), moving at the velocities of the simulation at the scene's pace: not over
-    // the wall time between the two publications, which a loaded machine makes in bursts
-    // (velocities 50 times too large, and a client's extrapolation far off)
-    Real scale = 0;
-    {
-      std::lock_guard lock(stats_mutex_);
-      scale = stats_.time_scale;
-    }
-    const Real stepped = frame->to->sim_time - frame->from->sim_time;
-    const Vec3& centre = local ? local->proxy : out.contact.proxy;
-    out.local_model =
-        LocalModelCut{cut_local_model(frame->surface_at(1), scale > 0 ? stepped / scale : 0, centre,
-                                      feed->request().radius, kMaxLocalModelTriangles),
-                      frame->to->step, frame->published + frame->interval};
-    feed->sent(frame->to->version, now);
+  Real scale = 0;
+  if (proxy.local_model()) {  // only a local model needs the scene's pace
+    std::lock_guard lock(stats_mutex_);
+    scale = stats_.time_scale;
   }
+  ProxyOutput out = render_proxy(proxy, *frame, now, scale, device, buttons, reactions_, local);
   haptic_updates_.fetch_add(1, std::memory_order_relaxed);
   const HapticContact& contact = out.contact;
   presence_.update({proxy.key(), contact.proxy, proxy.settings().radius, contact.in_contact,

@@ -1,0 +1,27 @@
+#include "runtime/proxy_render.hpp"
+
+namespace felt {
+
+ProxyOutput render_proxy(HapticProxy& proxy, const HapticFrame& frame, SteadyClock::time_point now,
+                         Real time_scale, const Vec3& device, std::uint32_t buttons,
+                         ReactionAccumulator& reactions, const LocalContact* local) {
+  ProxyOutput out = proxy.update(frame.surface(now), proxy.seconds_since_last(now), device, buttons,
+                                 reactions, local);
+  LocalModelFeed* feed = proxy.local_model();
+  if (feed && feed->due(frame.to->version, now)) {
+    // the newer snapshot, which the render reaches one interval after it was published
+    // (HapticFrame), moving at the velocities of the simulation at the scene's pace: not over
+    // the wall time between the two publications, which a loaded machine makes in bursts
+    // (velocities 50 times too large, and a client's extrapolation far off)
+    const Real stepped = frame.to->sim_time - frame.from->sim_time;
+    const Vec3& centre = local ? local->proxy : out.contact.proxy;
+    out.local_model = LocalModelCut{
+        cut_local_model(frame.surface_at(1), time_scale > 0 ? stepped / time_scale : 0, centre,
+                        feed->request().radius, kMaxLocalModelTriangles),
+        frame.to->step, frame.published + frame.interval};
+    feed->sent(frame.to->version, now);
+  }
+  return out;
+}
+
+}  // namespace felt
