@@ -138,12 +138,20 @@ int stats(const Common& common) {
                 static_cast<unsigned long long>(s.steps()), s.sim_time(), s.real_time_factor(),
                 s.ms_per_step(), s.paused() ? ", paused" : "", s.time_scale());
     std::printf(
-        "  %u clients, %u bodies, %llu particles, %llu haptic updates, %llu rescued and "
-        "%llu unrecoverable steps\n",
+        "  %u clients, %u bodies, %llu particles, %llu haptic updates, %llu rescued, "
+        "%llu unrecoverable and %llu over-budget steps\n",
         s.clients(), s.bodies(), static_cast<unsigned long long>(s.particles()),
         static_cast<unsigned long long>(s.haptic_updates()),
         static_cast<unsigned long long>(s.rescued_steps()),
-        static_cast<unsigned long long>(s.unrecoverable_steps()));
+        static_cast<unsigned long long>(s.unrecoverable_steps()),
+        static_cast<unsigned long long>(s.over_budget_steps()));
+    // one line per body: "  body 0 cloth symplectic_euler: 2 substeps, 0 rescued, 0 over budget"
+    for (const v1::BodyStats& body : s.body_stats()) {
+      std::printf("  body %u %s %s: %u substeps, %llu rescued, %llu over budget\n", body.body_id(),
+                  body.kind().c_str(), body.integrator().c_str(), body.substeps(),
+                  static_cast<unsigned long long>(body.rescued_steps()),
+                  static_cast<unsigned long long>(body.over_budget_steps()));
+    }
     // one line per system: "cloth ms/step: integration 0.412, stretch_limit 0.101, ..."
     std::string system;
     for (const v1::StageTime& stage : s.stages()) {

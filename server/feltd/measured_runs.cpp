@@ -139,6 +139,7 @@ nlohmann::json to_json(const SampledRunStats& stats) {
           {"max_energy_drift", stats.max_energy_drift},
           {"rescued_steps", stats.rescued_steps},
           {"unrecoverable_steps", stats.unrecoverable_steps},
+          {"over_budget_steps", stats.over_budget_steps},
           {"nonfinite", stats.nonfinite}};
 }
 

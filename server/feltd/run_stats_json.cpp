@@ -28,7 +28,10 @@ nlohmann::json stats_to_json(const felt::BatchRunStats& stats) {
                             {"edges", body.edges},
                             {"triangles", body.triangles},
                             {"tets", body.tets},
-                            {"kinetic_energy", body.kinetic_energy}};
+                            {"kinetic_energy", body.kinetic_energy},
+                            {"substeps", body.substeps},
+                            {"rescued_steps", body.rescued_steps},
+                            {"over_budget_steps", body.over_budget_steps}};
     if (body.kind == "cloth") {
       entry["max_strain"] = body.max_strain;
     } else {
@@ -55,6 +58,7 @@ nlohmann::json stats_to_json(const felt::BatchRunStats& stats) {
           {"nonfinite", stats.nonfinite},
           {"rescued_steps", stats.rescued_steps},
           {"unrecoverable_steps", stats.unrecoverable_steps},
+          {"over_budget_steps", stats.over_budget_steps},
           {"bodies", bodies},
           {"solids",
            {{"totals", solid_totals},

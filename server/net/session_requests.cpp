@@ -112,6 +112,7 @@ void handle_get_stats(Session& session, std::uint64_t id) {
       out.set_haptic_updates(runner.haptic_updates);
       out.set_rescued_steps(runner.rescued_steps);
       out.set_unrecoverable_steps(runner.unrecoverable_steps);
+      out.set_over_budget_steps(runner.over_budget_steps);
       out.set_clients(static_cast<std::uint32_t>(scene->members().count()));
       out.set_bodies(static_cast<std::uint32_t>(bodies->bodies.size()));
       out.set_particles(bodies->particles());
@@ -128,6 +129,7 @@ void handle_get_stats(Session& session, std::uint64_t id) {
         entry.set_substeps(static_cast<std::uint32_t>(body.substeps));
         entry.set_rescued_steps(body.rescued_steps);
         entry.set_max_compression(body.max_compression);
+        entry.set_over_budget_steps(body.over_budget_steps);
       }
       add_stage_times("cloth", ClothSystem::kStages, runner.cloth_profile, out);
       add_stage_times("solids", SolidSystem::kStages, runner.solid_profile, out);

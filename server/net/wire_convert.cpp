@@ -32,6 +32,8 @@ v1::EventKind event_kind(SceneEvent::Kind kind) {
       return v1::EVENT_KIND_UNRECOVERABLE_STEP;
     case K::kRescuedStep:
       return v1::EVENT_KIND_STEP_RESCUED;
+    case K::kOverBudgetStep:
+      return v1::EVENT_KIND_STEP_OVER_BUDGET;
     case K::kBodyAdded:
       return v1::EVENT_KIND_BODY_ADDED;
     case K::kBodyRemoved:

@@ -186,6 +186,7 @@ BatchRunStats run_batch(Scene& scene, std::uint64_t steps, const BatchHaptics& h
     if (servo) servo->after_step(world, stats.haptics);
     if (report.flags & kStepRescued) ++stats.rescued_steps;
     if (report.flags & kStepUnrecoverable) ++stats.unrecoverable_steps;
+    if (report.flags & kStepOverBudget) ++stats.over_budget_steps;
     if (!world.cloth_system().bodies().empty()) {
       record_stages(report.cloth_profile, world.cloth_system().last_stats().substeps, stats.cloth);
     }
@@ -230,6 +231,10 @@ BatchRunStats run_batch(Scene& scene, std::uint64_t steps, const BatchHaptics& h
           stats.nonfinite || !all_finite(body.positions()) || !all_finite(body.velocities());
       stats.bodies.push_back(solid_stats(body));
     }
+    BodyRunStats& body = stats.bodies.back();
+    body.substeps = world.step_counts(id).substeps;
+    body.rescued_steps = world.substeps(id).rescued_steps();
+    body.over_budget_steps = world.step_counts(id).over_budget_steps;
   }
   return stats;
 }

@@ -24,6 +24,9 @@ struct BodyRunStats {
   double kinetic_energy = 0;
   double max_strain = 0;    ///< cloth
   double volume_ratio = 1;  ///< solid: volume over rest volume
+  int substeps = 1;         ///< of its last step (World::step_counts)
+  std::uint64_t rescued_steps = 0;
+  std::uint64_t over_budget_steps = 0;
 };
 
 /// Where a system's steps spent their time over a run, stage by stage.
@@ -77,6 +80,7 @@ struct BatchRunStats {
   bool nonfinite = false;  ///< a step could not be rescued, or a non-finite value remains
   std::uint64_t rescued_steps = 0;
   std::uint64_t unrecoverable_steps = 0;
+  std::uint64_t over_budget_steps = 0;  ///< steps some body's budget cut short (kStepOverBudget)
   std::vector<BodyRunStats> bodies;
   StageRunStats cloth;
   SolidRunStats solids;

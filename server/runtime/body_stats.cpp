@@ -9,8 +9,9 @@ std::vector<BodyStats> body_stats(const World& world) {
     if (ref.kind == BodyRef::Kind::kCloth) {
       const ClothBody& cloth = world.cloths()[ref.index];
       out.push_back({id, "cloth", std::string(cloth.integrator().name()), cloth.max_strain(), 1,
-                     cloth.kinetic_energy(), world.substeps(id).substeps(),
-                     world.substeps(id).rescued_steps(), cloth.max_compression()});
+                     cloth.kinetic_energy(), world.step_counts(id).substeps,
+                     world.substeps(id).rescued_steps(), cloth.max_compression(),
+                     world.step_counts(id).over_budget_steps});
     } else if (ref.kind == BodyRef::Kind::kSolid) {
       const SolidBody& solid = world.solids().bodies()[ref.index];
       const Integrator* integrator = solid.integrator();
@@ -19,8 +20,8 @@ std::vector<BodyStats> body_stats(const World& world) {
                                      : std::string(kTimeCorrectedVerlet);
       out.push_back({id, "solid", integrator ? std::string(integrator->name()) : update, 0,
                      solid.volume() / solid.rest_volume(), solid.kinetic_energy(),
-                     std::max(world.substeps(id).substeps(), world.solids().last_stats().substeps),
-                     world.substeps(id).rescued_steps()});
+                     world.step_counts(id).substeps, world.substeps(id).rescued_steps(), 0,
+                     world.step_counts(id).over_budget_steps});
     }
   }
   return out;

@@ -16,9 +16,10 @@ struct BodyStats {
   Real max_strain = 0;     ///< cloth: ClothBody::max_strain
   Real volume_ratio = 1;   ///< solid: volume / rest volume
   Real kinetic_energy = 0;
-  int substeps = 1;  ///< World::substeps: a rescue's or the stable step's
+  int substeps = 1;  ///< of its last step (World::step_counts): its stable step's or a rescue's
   std::uint64_t rescued_steps = 0;
-  Real max_compression = 0;  ///< cloth: ClothBody::max_compression
+  Real max_compression = 0;             ///< cloth: ClothBody::max_compression
+  std::uint64_t over_budget_steps = 0;  ///< World::step_counts
 };
 
 /// Every cloth and solid of `world`, in id order.

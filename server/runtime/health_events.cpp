@@ -5,14 +5,26 @@
 
 namespace felt {
 
+namespace {
+
+/// Adds `ids` to the sorted `bodies`, each once.
+void add_once(std::vector<BodyId>& bodies, const std::vector<std::uint32_t>& ids) {
+  for (BodyId id : ids) {
+    const auto at = std::lower_bound(bodies.begin(), bodies.end(), id);
+    if (at == bodies.end() || *at != id) bodies.insert(at, id);
+  }
+}
+
+}  // namespace
+
 void HealthEvents::count(const StepReport& report) {
   if (report.flags & kStepRescued) {
     ++rescued_.total;
-    // every body rescued since the last event, once
-    for (BodyId id : report.rescued_bodies) {
-      const auto at = std::lower_bound(rescued_.bodies.begin(), rescued_.bodies.end(), id);
-      if (at == rescued_.bodies.end() || *at != id) rescued_.bodies.insert(at, id);
-    }
+    add_once(rescued_.bodies, report.rescued_bodies);  // every body since the last event
+  }
+  if (report.flags & kStepOverBudget) {
+    ++over_budget_.total;
+    add_once(over_budget_.bodies, report.over_budget_bodies);
   }
   if (report.flags & kStepUnrecoverable) {
     ++unrecoverable_.total;
@@ -22,7 +34,8 @@ void HealthEvents::count(const StepReport& report) {
 
 void HealthEvents::report(Clock::time_point now, bool at_once, const SceneEvent& stamp) {
   for (auto [kind, troubled] : {std::pair{SceneEvent::Kind::kUnrecoverableStep, &unrecoverable_},
-                                std::pair{SceneEvent::Kind::kRescuedStep, &rescued_}}) {
+                                std::pair{SceneEvent::Kind::kRescuedStep, &rescued_},
+                                std::pair{SceneEvent::Kind::kOverBudgetStep, &over_budget_}}) {
     if (troubled->total == troubled->reported) continue;
     if (!at_once && troubled->last_event && now - *troubled->last_event < kInterval) continue;
     SceneEvent e = stamp;

@@ -1,7 +1,7 @@
 #pragma once
-// A scene's rescued and unrecoverable steps (core/world/world.hpp), counted as the physics
-// thread takes them and told to the scene's members as events: coalesced, at most one of each
-// kind per half second, so that an exploding scene does not send an event every step.
+// A scene's rescued, unrecoverable and over-budget steps (core/world/world.hpp), counted as the
+// physics thread takes them and told to the scene's members as events: coalesced, at most one of
+// each kind per half second, so that an exploding scene does not send an event every step.
 
 #include <cstdint>
 #include <optional>
@@ -28,6 +28,7 @@ class HealthEvents {
 
   std::uint64_t rescued() const { return rescued_.total; }
   std::uint64_t unrecoverable() const { return unrecoverable_.total; }
+  std::uint64_t over_budget() const { return over_budget_.total; }
 
  private:
   /// Steps of one kind of trouble: how many since the start, how many of them events have
@@ -35,13 +36,14 @@ class HealthEvents {
   struct Troubled {
     std::uint64_t total = 0;
     std::uint64_t reported = 0;
-    /// unrecoverable: the bodies of the last step; rescued: every body since the last event
+    /// unrecoverable: the bodies of the last step; rescued and over budget: every body since
+    /// the last event
     std::vector<BodyId> bodies;
     std::optional<Clock::time_point> last_event;
   };
 
   SceneMembers& members_;
-  Troubled unrecoverable_, rescued_;
+  Troubled unrecoverable_, rescued_, over_budget_;
 };
 
 }  // namespace felt

@@ -106,7 +106,7 @@ void RunTrace::write_rows(const World& world, const StepReport& report) {
       csv_ << ',' << v->x() << ',' << v->y() << ',' << v->z();
     }
     csv_ << ',' << m.max_speed << ',' << m.max_strain << ',' << m.max_compression << ','
-         << report.max_substeps << ',' << ((report.flags & kStepRescued) ? 1 : 0) << ','
+         << world.step_counts(id).substeps << ',' << ((report.flags & kStepRescued) ? 1 : 0) << ','
          << (unrecoverable ? 1 : 0) << ',' << hash << '\n';
     ++index;
   }

@@ -30,6 +30,7 @@ SampledRunStats run_sampled(Scene& scene, std::uint64_t steps_per_sample, std::s
   out.cpu_per_sim_second = batch.sim_time > 0 ? batch.cpu_seconds / batch.sim_time : 0;
   out.rescued_steps = batch.rescued_steps;
   out.unrecoverable_steps = batch.unrecoverable_steps;
+  out.over_budget_steps = batch.over_budget_steps;
   out.nonfinite = batch.nonfinite;
   return out;
 }

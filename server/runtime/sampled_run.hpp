@@ -21,6 +21,7 @@ struct SampledRunStats {
   Real max_energy_drift = 0;  ///< J, the largest |E − E_start| over the samples
   std::uint64_t rescued_steps = 0;
   std::uint64_t unrecoverable_steps = 0;
+  std::uint64_t over_budget_steps = 0;
   bool nonfinite = false;  ///< as BatchRunStats::nonfinite
 };
 

@@ -18,6 +18,9 @@ struct SceneEvent {
     kUnrecoverableStep,
     /// steps some body took only with substeps after its step failed; coalesced the same way
     kRescuedStep,
+    /// steps in which some body reached its step budget or an integrator's cap; coalesced the
+    /// same way
+    kOverBudgetStep,
     kBodyAdded,
     kBodyRemoved,
     kBodyChanged,
@@ -34,7 +37,8 @@ struct SceneEvent {
   std::uint64_t sequence = 0;  ///< 1, 2, ... per scene
   std::uint64_t step = 0;      ///< the scene's step count when it was reported
   double sim_time = 0;
-  std::uint64_t count = 0;  ///< kUnrecoverableStep, kRescuedStep: such steps since the last one
+  /// kUnrecoverableStep, kRescuedStep, kOverBudgetStep: such steps since the last one
+  std::uint64_t count = 0;
   std::vector<BodyId> body_ids;  ///< the bodies concerned
   std::vector<BodyInfo> bodies;  ///< kBodyAdded: the new body; kReset: every body now
   ClientId client = 0;           ///< whose request caused it (0: the server)

@@ -210,6 +210,7 @@ void SceneRunner::run(std::stop_token stop) {
       stats_.sim_time = world.time();
       stats_.rescued_steps = health_.rescued();
       stats_.unrecoverable_steps = health_.unrecoverable();
+      stats_.over_budget_steps = health_.over_budget();
       stats_.paused = pacer.paused();
       stats_.time_scale = pacer.scale();
       if (const auto rates = window.close_if_full(after, world.time())) {

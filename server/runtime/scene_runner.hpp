@@ -46,6 +46,7 @@ struct RunnerStats {
   std::uint64_t haptic_updates = 0;  ///< proxy solves since the scene started
   std::uint64_t rescued_steps = 0;
   std::uint64_t unrecoverable_steps = 0;
+  std::uint64_t over_budget_steps = 0;  ///< steps that reached their budget (HealthEvents)
   bool paused = false;
   double time_scale = 1;
   ServoStats servo;               ///< of the scene's scripted devices, if it has any

@@ -16,6 +16,8 @@ void read_health(const ObjectReader& health, WorldSettings& settings) {
   settings.max_substep_doublings = static_cast<int>(
       health.count("max_substep_doublings", settings.max_substep_doublings, 0, 10));
   h.relax_after = health.ranged("relax_after", h.relax_after, 0, 1e6, "s");
+  h.auto_substeps = health.boolean("auto_substeps", h.auto_substeps);
+  h.step_budget = static_cast<int>(health.count("step_budget", h.step_budget, 1, kMaxStepBudget));
 }
 
 }  // namespace felt::scene_json

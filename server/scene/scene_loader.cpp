@@ -11,7 +11,7 @@
 
 #include "core/cloth/cloth_grid.hpp"
 #include "core/cloth/mesh_cloth.hpp"
-#include "core/integrate/xpbd_integrator.hpp"
+#include "scene/cloth_integrator_reader.hpp"
 #include "scene/haptics_reader.hpp"
 #include "scene/health_reader.hpp"
 #include "scene/obj_reader.hpp"
@@ -245,38 +245,8 @@ ClothModel read_mesh_model(const ObjectReader& body, const SceneLoadOptions& opt
   return make_mesh_cloth(*triangles, total_mass);
 }
 
-/// A cloth's "integrator": a name, or an object with the name and the integrator's parameters
-/// (only xpbd has any: "substeps").
-std::unique_ptr<Integrator> read_cloth_integrator(const ObjectReader& body) {
-  std::string name = "symplectic_euler";
-  std::string name_path = body.path_of("integrator");
-  std::uint32_t substeps = XpbdIntegrator::kDefaultSubsteps;
-  if (body.has("integrator") && body.at("integrator").is_object()) {
-    const ObjectReader integrator(body.at("integrator"), body.path_of("integrator"),
-                                  {"name", "substeps"});
-    name = integrator.string("name", name);
-    name_path = integrator.path_of("name");
-    substeps = integrator.count("substeps", substeps, 1, XpbdIntegrator::kMaxSubsteps);
-    if (integrator.has("substeps") && name != "xpbd") {
-      fail(integrator.path_of("substeps"), "applies to xpbd only");
-    }
-  } else {
-    name = body.string("integrator", name);
-  }
-  if (name == "xpbd") return std::make_unique<XpbdIntegrator>(static_cast<int>(substeps));
-  auto integrator = make_integrator(name);
-  if (!integrator) {
-    std::string known;
-    for (std::string_view known_name : integrator_names()) {
-      known += (known.empty() ? "" : ", ") + std::string(known_name);
-    }
-    fail(name_path, "unknown integrator \"" + name + "\" (known: " + known + ")");
-  }
-  return integrator;
-}
-
 ClothBody read_cloth(const ObjectReader& body, std::size_t index, const SceneLoadOptions& options,
-                     std::size_t& particles_left) {
+                     Real time_step, const HealthSettings& health, std::size_t& particles_left) {
   if (body.has("grid") == body.has("mesh")) {
     fail(body.path_of("grid"), "a cloth needs exactly one of \"grid\" and \"mesh\"");
   }
@@ -301,6 +271,7 @@ ClothBody read_cloth(const ObjectReader& body, std::size_t index, const SceneLoa
   read_constraints(body, cloth);
   read_anchors(body, cloth);
   read_constraint_forces(body, cloth);
+  check_stable_step(body, cloth, time_step, health);
   return cloth;
 }
 
@@ -337,14 +308,15 @@ Collider read_collider(const json& value, const std::string& path) {
 }
 
 SceneBody read_body(const json& entry, const std::string& path, std::size_t index,
-                    const SceneLoadOptions& options, Real time_step, std::size_t& particles_left) {
+                    const SceneLoadOptions& options, Real time_step, const HealthSettings& health,
+                    std::size_t& particles_left) {
   const json* type = entry.is_object() && entry.contains("type") ? &entry["type"] : nullptr;
   if (type && *type == "cloth") {
     const ObjectReader body(entry, path,
                             {"name", "type", "grid", "mesh", "mass", "springs", "drag",
                              "stretch_limit", "thickness", "self_collision", "wind", "integrator",
                              "pin", "constraints", "anchors", "constraint_forces"});
-    return read_cloth(body, index, options, particles_left);
+    return read_cloth(body, index, options, time_step, health, particles_left);
   }
   if (type && *type == "solid") {
     const ObjectReader body(
@@ -357,13 +329,14 @@ SceneBody read_body(const json& entry, const std::string& path, std::size_t inde
   fail(child(path, "type"), "must be \"cloth\" or \"solid\"");
 }
 
-void read_bodies(const json& bodies, const SceneLoadOptions& options, Real time_step,
+void read_bodies(const json& bodies, const SceneLoadOptions& options, const WorldSettings& settings,
                  Scene& scene) {
   if (!bodies.is_array()) fail("bodies", "must be an array");
   std::size_t particles_left = options.max_particles;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     std::visit([&](auto&& body) { scene.world.add_body(std::move(body)); },
-               read_body(bodies[i], element("bodies", i), i, options, time_step, particles_left));
+               read_body(bodies[i], element("bodies", i), i, options, settings.time_step,
+                         settings.health, particles_left));
   }
 }
 
@@ -379,11 +352,11 @@ Scene read_scene(const json& document, const SceneLoadOptions& options) {
   settings.gravity = root.vec3("gravity", settings.gravity);
   if (root.has("max_speed")) settings.max_speed = root.ranged("max_speed", 0, 1e-3, 1e6, "m/s");
   if (root.has("health")) {
-    read_health(
-        ObjectReader(root.at("health"), root.path_of("health"),
-                     {"energy_check", "energy_tolerance", "energy_window", "max_energy_growth",
-                      "speed_growth", "max_substep_doublings", "relax_after"}),
-        settings);
+    read_health(ObjectReader(root.at("health"), root.path_of("health"),
+                             {"energy_check", "energy_tolerance", "energy_window",
+                              "max_energy_growth", "speed_growth", "max_substep_doublings",
+                              "relax_after", "auto_substeps", "step_budget"}),
+                settings);
   }
   SolidStepSettings solid_settings;
   if (root.has("solids")) {
@@ -403,7 +376,7 @@ Scene read_scene(const json& document, const SceneLoadOptions& options) {
   }
 
   // colliders take the body ids after the bodies, so a body's id is its index in "bodies"
-  if (root.has("bodies")) read_bodies(root.at("bodies"), options, settings.time_step, scene);
+  if (root.has("bodies")) read_bodies(root.at("bodies"), options, settings, scene);
   if (root.has("colliders")) {
     const json& colliders = root.at("colliders");
     if (!colliders.is_array()) fail("colliders", "must be an array");
@@ -426,10 +399,11 @@ std::expected<Scene, SceneError> load_scene(const json& document, const SceneLoa
 
 std::expected<SceneBody, SceneError> load_body(const json& entry, const std::string& path,
                                                std::size_t index, Real time_step,
-                                               const SceneLoadOptions& options) {
+                                               const SceneLoadOptions& options,
+                                               const HealthSettings& health) {
   try {
     std::size_t particles_left = options.max_particles;
-    return read_body(entry, path, index, options, time_step, particles_left);
+    return read_body(entry, path, index, options, time_step, health, particles_left);
   } catch (const Failure& failure) {
     return std::unexpected(failure.error);
   }

@@ -35,11 +35,13 @@ std::expected<Scene, SceneError> load_scene_file(const std::filesystem::path& fi
                                                  const SceneLoadOptions& options = {});
 
 /// One entry of a scene's "bodies" array (a body added at run time), read as the scene loader
-/// reads it: `path` names it in errors, `index` numbers its default name, `time_step` is the
-/// scene's; options.max_particles bounds this body alone.
+/// reads it: `path` names it in errors, `index` numbers its default name, `time_step` and
+/// `health` are the scene's (a cloth's stable step is checked against them); options.max_particles
+/// bounds this body alone.
 std::expected<SceneBody, SceneError> load_body(const nlohmann::json& entry, const std::string& path,
                                                std::size_t index, Real time_step,
-                                               const SceneLoadOptions& options);
+                                               const SceneLoadOptions& options,
+                                               const HealthSettings& health = {});
 /// One entry of a scene's "colliders" array.
 std::expected<Collider, SceneError> load_collider(const nlohmann::json& entry,
                                                   const std::string& path);

@@ -270,9 +270,11 @@ async function pollStats() {
     if (strains.length) plots.strain.push(Math.max(...strains));
     const body = scene.bodyStats.find((b) => String(b.bodyId) === $("body").value);
     if (body) {
+      // "× 4": the substeps of its last step (its stable step's or a rescue's)
+      const integrator = body.substeps > 1 ? `${body.integrator} × ${body.substeps}` : body.integrator;
       $("body-state").textContent = body.kind === "cloth"
-        ? `${body.integrator} · max strain ${body.maxStrain.toFixed(3)}`
-        : `${body.integrator} · volume ratio ${body.volumeRatio.toFixed(3)}`;
+        ? `${integrator} · max strain ${body.maxStrain.toFixed(3)}`
+        : `${integrator} · volume ratio ${body.volumeRatio.toFixed(3)}`;
       // the list shows the body's integrator when the body is chosen, then what the user picks
       if (shownIntegratorOf !== body.bodyId) {
         shownIntegratorOf = body.bodyId;

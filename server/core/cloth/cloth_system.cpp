@@ -59,6 +59,7 @@ const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider
   stats_.rescued = false;
   stats_.rescued_bodies.clear();
   stats_.unrecoverable.clear();
+  stats_.over_budget.clear();
   stats_.profile = {};
   if (!energy_valid_) {
     energy_.resize(bodies_.size());
@@ -86,16 +87,29 @@ const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider
     start.speed.acceleration = body.gravity().norm() + acceleration;
     start.speed.reachable = std::sqrt(2 * start.energy / health_[b].lightest);
     StickySubsteps& sticky = health_[b].substeps;
+    const std::int64_t budget = settings_.health.step_budget;
+    const std::int64_t stable = stable_substeps(b, h);
+    spent_ = 0;
+    capped_ = false;
     const RescueOutcome outcome = step_with_rescue(
-        sticky.start(relax_steps), settings_.rescue,
+        static_cast<int>(
+            std::min(budget, std::max<std::int64_t>(stable, sticky.start(relax_steps)))),
+        settings_.max_doublings,
         [&](int substeps) { return attempt(b, t, h, substeps, colliders, start, yield_point); },
         [&] {
           body.state().x = backup_.x;
           body.state().v = backup_.v;
           body.integrator().reset();
           start.first = false;
-        });
+        },
+        [&](int next) { return spent_ + next <= budget; });
     sticky.record(outcome);
+    BodyStepCounts& counts = health_[b].counts;
+    counts.substeps = outcome.substeps;
+    if (stable > budget || outcome.out_of_budget || capped_) {
+      ++counts.over_budget_steps;
+      stats_.over_budget.push_back(static_cast<std::uint32_t>(b));
+    }
     if (outcome.rescued) {
       stats_.rescued = true;
       stats_.rescued_bodies.push_back(static_cast<std::uint32_t>(b));
@@ -120,15 +134,33 @@ const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider
   return stats_;
 }
 
+std::int64_t ClothSystem::stable_substeps(std::size_t index, Real h) {
+  if (!settings_.health.auto_substeps) return 1;
+  const Real limit = health_[index].stable_step.of(bodies_[index]);
+  // no step is stable: more than any budget
+  if (!(limit > 0)) return std::numeric_limits<std::int64_t>::max();
+  // the tolerance keeps a step of exactly k limits from rounding up to k + 1 substeps
+  const Real substeps = std::ceil(h / limit - 1e-9);
+  return substeps >= Real{1e18} ? std::numeric_limits<std::int64_t>::max()
+                                : std::max<std::int64_t>(1, static_cast<std::int64_t>(substeps));
+}
+
 bool ClothSystem::attempt(std::size_t index, Real t, Real h, int substeps,
                           std::span<const Collider> colliders, StepStart& start,
                           const std::function<void()>& yield_point) {
   ClothBody& body = bodies_[index];
   const Real dt = h / substeps;
   StepProfile& profile = stats_.profile;
+  Integrator& integrator = body.integrator();
   for (int s = 0; s < substeps; ++s) {
+    // an even share of what the budget has left: the attempt, started only when its substeps
+    // fit, never spends beyond it
+    const std::int64_t share = (settings_.health.step_budget - spent_) / (substeps - s);
+    integrator.limit_internal_steps(static_cast<int>(std::max<std::int64_t>(1, share)));
     timed(profile, StepStage::kIntegration,
-          [&] { body.integrator().step(body, body.state(), t + s * dt, dt); });
+          [&] { integrator.step(body, body.state(), t + s * dt, dt); });
+    spent_ += integrator.last_internal_steps();
+    capped_ = capped_ || integrator.last_step_capped();
     if (yield_point) yield_point();
     timed(profile, StepStage::kStretchLimit, [&] {
       limiters_[index].apply(body.model(), body.inv_mass(), body.params().stretch, dt,

@@ -12,7 +12,9 @@
 
 #include "core/cloth/cloth_body.hpp"
 #include "core/cloth/cloth_self_collision.hpp"
+#include "core/cloth/cloth_stable_step.hpp"
 #include "core/collision/collider.hpp"
+#include "core/step/body_step_counts.hpp"
 #include "core/step/energy_balance.hpp"
 #include "core/step/health_settings.hpp"
 #include "core/step/step_profile.hpp"
@@ -29,7 +31,7 @@ struct ClothStepSettings {
   /// the work gravity and external forces did is taken as exploding (an unstable mode grows
   /// geometrically; a passive cloth can only lose energy).
   Real max_energy_growth = 2;
-  RescuePolicy rescue;
+  int max_doublings = 6;  ///< retries of a failed step, each with twice the substeps
   HealthSettings health{};
 };
 
@@ -41,6 +43,9 @@ struct ClothStepStats {
   /// cloths (indices) that could not be rescued: rolled back and stopped; no allocation while
   /// it stays empty
   std::vector<std::uint32_t> unrecoverable;
+  /// cloths (indices) whose step reached its budget (HealthSettings::step_budget); no
+  /// allocation while it stays empty
+  std::vector<std::uint32_t> over_budget;
   StepProfile profile;
 };
 
@@ -80,8 +85,11 @@ class ClothSystem {
   const ClothStepStats& step(Real t, Real h, std::span<const Collider> colliders,
                              const std::function<void()>& yield_point = {});
   const ClothStepStats& last_stats() const { return stats_; }
-  /// The substeps cloth `index` steps with now, and how many of its steps were rescued.
+  /// The substeps a rescue left cloth `index` with, and how many of its steps were rescued.
   const StickySubsteps& substeps(std::uint32_t index) const { return health_[index].substeps; }
+  /// The substeps cloth `index` took in its last step (its stable step's, a rescue's) and how
+  /// many of its steps reached their budget.
+  const BodyStepCounts& step_counts(std::uint32_t index) const { return health_[index].counts; }
 
  private:
   /// What the health check keeps of one cloth between steps.
@@ -91,6 +99,8 @@ class ClothSystem {
     Real size = 0;  ///< m, the diagonal of its bounding box when added
     Real mass = 0;  ///< kg
     Real lightest = std::numeric_limits<Real>::infinity();  ///< kg, of a particle
+    CachedStableStep stable_step;
+    BodyStepCounts counts;
   };
   /// The energies and forces the health check compares a step's end with.
   struct StepStart {
@@ -99,7 +109,11 @@ class ClothSystem {
     bool first = true;  ///< the attempt is the first of the step, not a retry
   };
 
-  /// Steps cloth `index` over [t, t + h] in `substeps` equal parts; false when unhealthy.
+  /// The substeps cloth `index`'s stable step asks for in a step of length h (1 without
+  /// automatic substeps or a limit), possibly beyond the budget.
+  std::int64_t stable_substeps(std::size_t index, Real h);
+  /// Steps cloth `index` over [t, t + h] in `substeps` equal parts, each integrator call
+  /// within its share of what the step budget has left; false when unhealthy.
   /// `energy` holds the body's kinetic plus elastic energy at the start, and at the end when
   /// the step was healthy.
   bool attempt(std::size_t index, Real t, Real h, int substeps, std::span<const Collider> colliders,
@@ -123,7 +137,9 @@ class ClothSystem {
   ParticleState backup_;
   /// applied forces (external and wind) at the start of a step, and at its end
   std::vector<Vec3> applied_before_, applied_after_;
-  Real work_ = 0;  ///< by the applied forces over the attempt last checked
+  Real work_ = 0;           ///< by the applied forces over the attempt last checked
+  std::int64_t spent_ = 0;  ///< of the step budget, by the body being stepped
+  bool capped_ = false;     ///< an integrator call of the body being stepped stopped at a cap
   /// the gravitational energy the attempt last checked left, so that a healthy step's
   /// mechanical energy is not summed over every spring again
   Real gravitational_ = 0;

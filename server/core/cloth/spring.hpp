@@ -29,6 +29,8 @@ struct SpringParams {
   bool enabled = true;
   Real stiffness = 0;  ///< k_s, N/m
   Real damping = 0;    ///< k_d, N·s/m, along the spring
+
+  bool operator==(const SpringParams&) const = default;
 };
 
 }  // namespace felt

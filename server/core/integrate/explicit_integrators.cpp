@@ -1,5 +1,7 @@
 #include "core/integrate/explicit_integrators.hpp"
 
+#include <array>
+
 namespace felt {
 
 void ExplicitEuler::step(const DynamicSystem& system, ParticleState& state, Real t, Real h) {
@@ -10,6 +12,11 @@ void ExplicitEuler::step(const DynamicSystem& system, ParticleState& state, Real
     state.x[p] += h * state.v[p];
     state.v[p] += h * inv_mass[p] * force_[p];
   }
+}
+
+Real ExplicitEuler::step_limit(const OscillatorMode& mode) const {
+  static constexpr std::array<Real, 2> kStabilityPolynomial{1, 1};
+  return polynomial_step_limit(kStabilityPolynomial, mode);
 }
 
 void SymplecticEuler::step(const DynamicSystem& system, ParticleState& state, Real t, Real h) {

@@ -10,6 +10,8 @@ class ExplicitEuler final : public Integrator {
  public:
   std::string_view name() const override { return "explicit_euler"; }
   void step(const DynamicSystem& system, ParticleState& state, Real t, Real h) override;
+  /// R(z) = 1 + z: h ≤ c/ω² on an underdamped mode, no step at all on an undamped one.
+  Real step_limit(const OscillatorMode& mode) const override;
 
  private:
   std::vector<Vec3> force_;
@@ -21,6 +23,8 @@ class SymplecticEuler final : public Integrator {
  public:
   std::string_view name() const override { return "symplectic_euler"; }
   void step(const DynamicSystem& system, ParticleState& state, Real t, Real h) override;
+  /// Its amplification matrix has the trace and determinant of position Verlet's.
+  Real step_limit(const OscillatorMode& mode) const override { return verlet_step_limit(mode); }
 
  private:
   std::vector<Vec3> force_;

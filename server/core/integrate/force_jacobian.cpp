@@ -1,6 +1,9 @@
 #include "core/integrate/force_jacobian.hpp"
 
 #include <algorithm>
+#include <vector>
+
+#include "core/math/largest_eigenvalue.hpp"
 
 namespace felt {
 
@@ -51,6 +54,31 @@ void ForceJacobian::diagonal_blocks(std::span<Mat3> dx, std::span<Mat3> dv) cons
     dv[pair.i] += pair_dv;
     dv[pair.j] += pair_dv;
   }
+}
+
+void ForceJacobian::scaled_matrices(std::span<const Real> scale,
+                                    Eigen::SparseMatrix<Real>& stiffness,
+                                    Eigen::SparseMatrix<Real>& damping) const {
+  const std::size_t n = particle_count();
+  std::vector<Mat3> dx(n), dv(n);
+  diagonal_blocks(dx, dv);
+  std::vector<Eigen::Triplet<Real>> k, d;
+  for (std::uint32_t p = 0; p < n; ++p) {
+    const Real s = scale[p] * scale[p];
+    add_block(k, p, p, -s * dx[p]);
+    add_block(d, p, p, -s * dv[p]);
+  }
+  // ∂f_i/∂x_j = −∂f_i/∂x_i for a pair, so K's off-diagonal block is the pair's dx()
+  for (const Pair& pair : pairs_) {
+    const Real s = scale[pair.i] * scale[pair.j];
+    const Mat3 k_ij = s * pair.dx(), d_ij = s * pair.dv();
+    add_block(k, pair.i, pair.j, k_ij);
+    add_block(k, pair.j, pair.i, k_ij);
+    add_block(d, pair.i, pair.j, d_ij);
+    add_block(d, pair.j, pair.i, d_ij);
+  }
+  stiffness = block_matrix(n, k);
+  damping = block_matrix(n, d);
 }
 
 }  // namespace felt

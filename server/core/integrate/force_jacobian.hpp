@@ -7,6 +7,8 @@
 #include <span>
 #include <vector>
 
+#include <Eigen/SparseCore>
+
 #include "core/math/types.hpp"
 
 namespace felt {
@@ -44,6 +46,12 @@ class ForceJacobian {
 
   /// The 3×3 diagonal blocks ∂f_p/∂x_p and ∂f_p/∂v_p (for preconditioners).
   void diagonal_blocks(std::span<Mat3> dx, std::span<Mat3> dv) const;
+
+  /// K = −∂f/∂x and D = −∂f/∂v as 3n × 3n matrices whose block (a, b) is scaled by
+  /// s_a s_b: with s_p = √(1/m_p), M^-½ K M^-½ and M^-½ D M^-½, symmetric, with the eigenvalues
+  /// of M⁻¹K and M⁻¹D (a pinned particle, s = 0, drops out).
+  void scaled_matrices(std::span<const Real> scale, Eigen::SparseMatrix<Real>& stiffness,
+                       Eigen::SparseMatrix<Real>& damping) const;
 
   std::size_t particle_count() const { return velocity_diagonal_.size(); }
   const std::vector<Pair>& pairs() const { return pairs_; }

@@ -17,6 +17,10 @@ class ImplicitEuler final : public Integrator {
   /// The linear solve of the last step.
   const FilteredConjugateGradient::Result& last_solve() const { return last_solve_; }
   FilteredConjugateGradient& solver() { return solver_; }
+  /// The last solve stopped at the solver's max_iterations unconverged.
+  bool last_step_capped() const override {
+    return !last_solve_.converged && last_solve_.iterations >= solver_.max_iterations;
+  }
 
  private:
   ForceJacobian jacobian_;

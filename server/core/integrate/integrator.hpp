@@ -8,6 +8,7 @@
 
 #include "core/integrate/dynamic_system.hpp"
 #include "core/integrate/particle_state.hpp"
+#include "core/integrate/stability_limit.hpp"
 
 namespace felt {
 
@@ -26,6 +27,19 @@ class Integrator {
   /// Forgets history kept between steps (position Verlet's previous positions, ...); called
   /// when the state was changed from outside, e.g. rolled back or teleported.
   virtual void reset() {}
+
+  /// The longest step that keeps `mode` from growing (stability_limit.hpp): kNoStepLimit for
+  /// the implicit schemes and for adaptive_rk, which chooses its own steps.
+  virtual Real step_limit(const OscillatorMode& /*mode*/) const { return kNoStepLimit; }
+
+  /// For an integrator that divides a step itself (adaptive_rk): the most internal steps each
+  /// later call may take (never more than its own cap), and how many the last call took; 1 for
+  /// the others. A world's step budget counts them (HealthSettings::step_budget).
+  virtual void limit_internal_steps(int /*cap*/) {}
+  virtual int last_internal_steps() const { return 1; }
+  /// The last call stopped at a cap before it was done: adaptive_rk accepted an internal step
+  /// its error control rejected, implicit Euler's conjugate gradients stopped unconverged.
+  virtual bool last_step_capped() const { return false; }
 };
 
 /// The integrator called `name`, or nullptr when there is none.

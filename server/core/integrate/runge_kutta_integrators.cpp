@@ -61,6 +61,11 @@ constexpr Real kMaxFactor = 5;
 
 }  // namespace
 
+Real Midpoint::step_limit(const OscillatorMode& mode) const {
+  static constexpr std::array<Real, 3> kStabilityPolynomial{1, 1, 1.0 / 2};
+  return polynomial_step_limit(kStabilityPolynomial, mode);
+}
+
 void Midpoint::step(const DynamicSystem& system, ParticleState& state, Real t, Real h) {
   const std::size_t n = state.size();
   size_buffers(n, dx_, dv_, x_mid_, v_mid_);
@@ -76,6 +81,11 @@ void Midpoint::step(const DynamicSystem& system, ParticleState& state, Real t, R
     state.x[p] += h * dx_[p];
     state.v[p] = inv_mass[p] == 0 ? Vec3(Vec3::Zero()) : Vec3(state.v[p] + h * dv_[p]);
   }
+}
+
+Real RungeKutta4::step_limit(const OscillatorMode& mode) const {
+  static constexpr std::array<Real, 5> kStabilityPolynomial{1, 1, 1.0 / 2, 1.0 / 6, 1.0 / 24};
+  return polynomial_step_limit(kStabilityPolynomial, mode);
 }
 
 void RungeKutta4::step(const DynamicSystem& system, ParticleState& state, Real t, Real h) {
@@ -141,13 +151,15 @@ void AdaptiveRungeKutta::step(const DynamicSystem& system, ParticleState& state,
   Real done = 0;
   int taken = 0;
   int rejected = 0;
+  bool capped = false;
+  const int max_steps = std::min(max_internal_steps_, internal_step_cap_);
   // the first stage of the first internal step; later ones reuse the last stage (FSAL). Not
   // kept between calls: the forces may change in between (external forces, pins).
   derivative(system, state.x, state.v, t, dx_[0], dv_[0]);
   while (true) {
     const Real remaining = h - done;
     // the budget: with k internal steps left, none may be shorter than remaining / k
-    const Real smallest = remaining / (max_internal_steps_ - taken);
+    const Real smallest = remaining / (max_steps - taken);
     Real dt = std::max(trial, smallest);
     bool last = false;
     if (dt * 1.01 >= remaining) {
@@ -177,6 +189,7 @@ void AdaptiveRungeKutta::step(const DynamicSystem& system, ParticleState& state,
     factor = std::min(factor, kMaxFactor);
 
     if (error <= 1 || forced) {
+      capped = capped || !(error <= 1);
       for (std::size_t p = 0; p < n; ++p) {
         state.x[p] = x_stage_[p];
         state.v[p] = inv_mass[p] == 0 ? Vec3(Vec3::Zero()) : v_stage_[p];
@@ -198,6 +211,7 @@ void AdaptiveRungeKutta::step(const DynamicSystem& system, ParticleState& state,
   internal_step_ = std::min(trial, h);
   last_internal_steps_ = taken;
   last_rejected_steps_ = rejected;
+  last_step_capped_ = capped;
 }
 
 }  // namespace felt

@@ -3,7 +3,9 @@
 // F(X) = [v, M⁻¹ f] (thesis 1 §4.1–§4.2). A pinned particle (inverse mass 0) has F = 0: it
 // stays where it is with v = 0.
 
+#include <algorithm>
 #include <array>
+#include <limits>
 
 #include "core/integrate/integrator.hpp"
 
@@ -17,6 +19,9 @@ class Midpoint final : public Integrator {
  public:
   std::string_view name() const override { return "midpoint"; }
   void step(const DynamicSystem& system, ParticleState& state, Real t, Real h) override;
+  /// R(z) = 1 + z + z²/2: no step on an undamped mode, a damped one up to where its damping
+  /// outweighs the growth.
+  Real step_limit(const OscillatorMode& mode) const override;
 
  private:
   std::vector<Vec3> dx_, dv_, x_mid_, v_mid_;
@@ -30,6 +35,7 @@ class RungeKutta4 final : public Integrator {
  public:
   std::string_view name() const override { return "rk4"; }
   void step(const DynamicSystem& system, ParticleState& state, Real t, Real h) override;
+  Real step_limit(const OscillatorMode& mode) const override;
 
  private:
   std::vector<Vec3> dx_, dv_, x_stage_, v_stage_, dx_sum_, dv_sum_;
@@ -67,9 +73,15 @@ class AdaptiveRungeKutta final : public Integrator {
 
   Real tolerance() const { return tolerance_; }
   int max_internal_steps() const { return max_internal_steps_; }
+  /// Lowers the internal steps of each later call below max_internal_steps() (the world's step
+  /// budget); a cap below 1 counts as 1.
+  void limit_internal_steps(int cap) override { internal_step_cap_ = std::max(1, cap); }
   /// Internal steps the last call took, rejected ones included (each costs six force
   /// evaluations).
-  int last_internal_steps() const { return last_internal_steps_; }
+  int last_internal_steps() const override { return last_internal_steps_; }
+  /// The last call accepted an internal step whose error was beyond the tolerance, because
+  /// its cap of internal steps left no shorter one.
+  bool last_step_capped() const override { return last_step_capped_; }
   /// How many of those were rejected.
   int last_rejected_steps() const { return last_rejected_steps_; }
   /// The internal step size the next call tries first; 0 before the first call.
@@ -84,7 +96,9 @@ class AdaptiveRungeKutta final : public Integrator {
 
   Real tolerance_;
   int max_internal_steps_;
+  int internal_step_cap_ = std::numeric_limits<int>::max();
   Real internal_step_ = 0;
+  bool last_step_capped_ = false;
   int last_internal_steps_ = 0;
   int last_rejected_steps_ = 0;
   std::array<std::vector<Vec3>, kStages> dx_, dv_;  ///< the stage derivatives k_s = [v, a]

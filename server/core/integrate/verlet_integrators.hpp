@@ -36,6 +36,9 @@ class PositionVerlet final : public Integrator {
  public:
   std::string_view name() const override { return "verlet"; }
   void step(const DynamicSystem& system, ParticleState& state, Real t, Real h) override;
+  Real step_limit(const OscillatorMode& mode) const override {
+    return second_order_verlet_step_limit(mode);
+  }
   void reset() override { h_prev_ = 0; }
 
  private:
@@ -61,6 +64,9 @@ class VelocityVerlet final : public Integrator {
  public:
   std::string_view name() const override { return "velocity_verlet"; }
   void step(const DynamicSystem& system, ParticleState& state, Real t, Real h) override;
+  Real step_limit(const OscillatorMode& mode) const override {
+    return second_order_verlet_step_limit(mode);
+  }
   void reset() override { force_valid_ = false; }
 
  private:
@@ -82,6 +88,9 @@ class Leapfrog final : public Integrator {
  public:
   std::string_view name() const override { return "leapfrog"; }
   void step(const DynamicSystem& system, ParticleState& state, Real t, Real h) override;
+  Real step_limit(const OscillatorMode& mode) const override {
+    return second_order_verlet_step_limit(mode);
+  }
   void reset() override { h_prev_ = 0; }
 
  private:

@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <variant>
 
+#include "core/integrate/stability_limit.hpp"
 #include "core/math/check.hpp"
 #include "core/solids/corotated_fem.hpp"
 #include "core/solids/generalized_mass_spring.hpp"
@@ -27,15 +28,6 @@ Model make_model(const TetMesh& rest, const TetTopology& topology, const SolidMa
       return CorotatedFem(rest, material.fem);
   }
   check_failed("unknown solid model");
-}
-
-/// The largest step with which position Verlet (velocity from the backward difference) stays
-/// stable on v̇ = −ω² x − c v: ω² h² + 2 c h < 4, with ω² and c the largest eigenvalues of M⁻¹K
-/// and M⁻¹D. Exact when K and D share their modes (FEM's D = β K); the mass-spring damping acts
-/// along the edges only, and the tests check its bodies at the estimate.
-Real verlet_step_limit(Real omega_squared, Real rate) {
-  // (−c + √(c² + 4ω²)) / ω², written without the cancellation and the 0/0 at ω = 0
-  return 4 / (rate + std::sqrt(rate * rate + 4 * omega_squared));
 }
 
 /// The eigenvalues are those of the rest state, and a deformed body is stiffer: a stretched
@@ -310,15 +302,17 @@ Real SolidBody::stable_time_step() const {
           // unconditionally stable, but an anchor is an explicit spring
           return anchors_.empty()
                      ? std::numeric_limits<Real>::infinity()
-                     : kDeformationMargin * verlet_step_limit(inv_mass * anchor_stiffness,
-                                                              inv_mass * anchor_damping);
+                     : kDeformationMargin * verlet_step_limit({inv_mass * anchor_stiffness,
+                                                               inv_mass * anchor_damping});
         } else {
-          // the masses are uniform, so M⁻¹K has the eigenvalues of K over the node mass;
+          // the masses are uniform, so M⁻¹K has the eigenvalues of K over the node mass (the
+          // limit is exact when K and D share their modes, FEM's D = β K; the mass-spring
+          // damping acts along the edges only, and the tests check its bodies at the estimate);
           // pinning nodes removes rows and columns, which cannot raise the largest one
           return kDeformationMargin *
                  verlet_step_limit(
-                     inv_mass * (model.largest_stiffness_eigenvalue() + anchor_stiffness),
-                     inv_mass * (model.largest_damping_eigenvalue() + anchor_damping));
+                     {inv_mass * (model.largest_stiffness_eigenvalue() + anchor_stiffness),
+                      inv_mass * (model.largest_damping_eigenvalue() + anchor_damping)});
         }
       },
       model_state_->model);

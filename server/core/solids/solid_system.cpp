@@ -66,11 +66,14 @@ const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
   if (bodies_.empty()) return stats_;
   Real longest = settings_.max_step;
   for (const SolidBody& body : bodies_) longest = std::min(longest, body.stable_time_step());
-  // the tolerance keeps a step of exactly k·max_step from rounding up to k + 1 substeps
-  const int stable = std::max(1, static_cast<int>(std::ceil(h / longest - 1e-9)));
-  const int substeps = std::max(
-      stable,
-      sticky_.start(static_cast<std::int64_t>(std::ceil(settings_.health.relax_after / h))));
+  const int budget = settings_.health.step_budget;
+  // the tolerance keeps a step of exactly k·max_step from rounding up to k + 1 substeps; past
+  // the budget any count stands for all (a stiff grab can ask for billions)
+  const Real wanted = std::ceil(h / longest - 1e-9);
+  const int stable = wanted > budget ? budget + 1 : std::max(1, static_cast<int>(wanted));
+  const int substeps =
+      std::min(budget, std::max(stable, sticky_.start(static_cast<std::int64_t>(
+                                            std::ceil(settings_.health.relax_after / h)))));
 
   SpeedSources speed{.acceleration = gravity.norm()};
   saved_.resize(bodies_.size());
@@ -88,11 +91,23 @@ const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
   }
   const Real max_speed =
       scaled_speed_limit(speed, size_, h, settings_.health.speed_growth, settings_.max_speed);
+  // the retries within kRescue's budget and, with the first attempt, within the step budget
+  const std::int64_t rescue_budget =
+      std::max(kRescue.min_budget, kRescue.budget_factor * std::int64_t{substeps});
+  std::int64_t retried = 0;
   const RescueOutcome outcome = step_with_rescue(
-      substeps, kRescue,
+      substeps, kRescue.max_doublings,
       [&](int n) { return attempt(h, n, gravity, colliders, max_speed, yield_point); },
-      [&] { restore(); });
+      [&] { restore(); },
+      [&](int next) {
+        if (retried + next > rescue_budget || substeps + retried + next > budget) return false;
+        retried += next;
+        return true;
+      });
   sticky_.record(outcome);
+  stats_.over_budget = stable > budget || outcome.out_of_budget;
+  counts_.substeps = outcome.substeps;
+  if (stats_.over_budget) ++counts_.over_budget_steps;
   stats_.rescued = outcome.rescued;
   if (!outcome.ok) {
     restore();

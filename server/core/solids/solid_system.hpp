@@ -14,6 +14,7 @@
 #include "core/solids/penetration_depth.hpp"
 #include "core/solids/solid_body.hpp"
 #include "core/solids/solid_collision_detection.hpp"
+#include "core/step/body_step_counts.hpp"
 #include "core/step/health_settings.hpp"
 #include "core/step/step_profile.hpp"
 #include "core/step/sticky_substeps.hpp"
@@ -37,7 +38,10 @@ struct SolidStepStats {
   std::size_t colliding_triangles = 0;  ///< in the last substep (Table 7.3 PKT)
   bool rescued = false;        ///< a substep left a non-finite or exploding state and was redone
   bool unrecoverable = false;  ///< redoing did not help; the bodies were rolled back and stopped
-  StepProfile profile;         ///< the stages of Table 7.4, and the health check
+  /// the step reached its budget (HealthSettings::step_budget): its stable step asked for
+  /// more substeps, or a retry was due that it could not afford
+  bool over_budget = false;
+  StepProfile profile;  ///< the stages of Table 7.4, and the health check
 };
 
 /// The soft solids of a world, stepped together because they collide with each other.
@@ -75,6 +79,8 @@ class SolidSystem {
   /// The substeps a rescue left the solids with (they step together) and how many of their
   /// steps were rescued.
   const StickySubsteps& substeps() const { return sticky_; }
+  /// The substeps of the last step and how many steps reached their budget.
+  const BodyStepCounts& step_counts() const { return counts_; }
 
  private:
   /// Runs `substeps` substeps of length h; false as soon as the state is not healthy.
@@ -95,6 +101,7 @@ class SolidSystem {
   std::vector<SolidBody::StepState> saved_;  ///< per body, the state before the step
   SolidStepStats stats_;
   StickySubsteps sticky_;
+  BodyStepCounts counts_;
   Real size_ = 0;  ///< m, the diagonal of the bodies' bounding box when the last was added
 };
 

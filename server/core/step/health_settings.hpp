@@ -25,6 +25,15 @@ struct HealthSettings {
   /// A body rescued with k substeps keeps them; after this many seconds without a rescue it tries
   /// k/2, and twice as long before the next try each time a halving had to be undone.
   Real relax_after = 1;
+  /// Explicit cloth integrators take as many substeps as their stable step needs
+  /// (cloth_stable_step.hpp) instead of waiting for a step to fail.
+  bool auto_substeps = true;
+  /// The most work one step of a body may do: substeps, over every attempt of the step
+  /// together (the first, the stable step's, the rescue's retries), each of adaptive_rk's
+  /// internal steps counting as one. A step that reaches it is reported and goes on with what
+  /// it can afford (docs/scenes.md "health").
+  int step_budget = kDefaultStepBudget;
+  static constexpr int kDefaultStepBudget = 1000;
 };
 
 }  // namespace felt

@@ -23,28 +23,43 @@ struct RescueOutcome {
   int substeps = 1;      ///< of the last attempt
   bool ok = false;       ///< the last attempt was healthy
   bool rescued = false;  ///< healthy only after a retry
+  /// a retry was due that the budget could not afford (the retries left untried)
+  bool out_of_budget = false;
 };
 
-/// Runs `attempt(substeps)` (true when the state it leaves is healthy) and, while it fails and
-/// `policy` allows, `restore()` followed by an attempt with twice the substeps. After a failed
-/// outcome the state is that of the last attempt: the caller decides what to put back.
-template <class Attempt, class Restore>
-RescueOutcome step_with_rescue(int substeps, const RescuePolicy& policy, Attempt&& attempt,
-                               Restore&& restore) {
+/// Runs `attempt(substeps)` (true when the state it leaves is healthy) and, while it fails, at
+/// most `max_doublings` times and while `affordable(next)` allows a retry with `next`
+/// substeps, `restore()` followed by an attempt with twice the substeps. After a failed outcome
+/// the state is that of the last attempt: the caller decides what to put back.
+template <class Attempt, class Restore, class Affordable>
+RescueOutcome step_with_rescue(int substeps, int max_doublings, Attempt&& attempt,
+                               Restore&& restore, Affordable&& affordable) {
   RescueOutcome outcome{substeps, attempt(substeps), false};
-  const std::int64_t budget =
-      std::max(policy.min_budget, policy.budget_factor * std::int64_t{substeps});
-  std::int64_t spent = 0;
-  for (int doubling = 0; !outcome.ok && doubling < policy.max_doublings &&
-                         spent + 2 * std::int64_t{outcome.substeps} <= budget;
-       ++doubling) {
+  for (int doubling = 0; !outcome.ok && doubling < max_doublings; ++doubling) {
+    if (!affordable(2 * outcome.substeps)) {
+      outcome.out_of_budget = true;
+      break;
+    }
     restore();
     outcome.substeps *= 2;
-    spent += outcome.substeps;
     outcome.ok = attempt(outcome.substeps);
     outcome.rescued = outcome.ok;
   }
   return outcome;
+}
+
+/// The same within `policy`'s budget of retry substeps.
+template <class Attempt, class Restore>
+RescueOutcome step_with_rescue(int substeps, const RescuePolicy& policy, Attempt&& attempt,
+                               Restore&& restore) {
+  const std::int64_t budget =
+      std::max(policy.min_budget, policy.budget_factor * std::int64_t{substeps});
+  std::int64_t spent = 0;
+  return step_with_rescue(substeps, policy.max_doublings, attempt, restore, [&](int next) {
+    if (spent + next > budget) return false;
+    spent += next;
+    return true;
+  });
 }
 
 }  // namespace felt

@@ -18,8 +18,7 @@ SolidStepSettings with_health(SolidStepSettings solid_settings, const HealthSett
 World::World(WorldSettings settings, SolidStepSettings solid_settings)
     : settings_(settings),
       cloths_(ClothStepSettings{settings.max_speed, settings.max_energy_growth,
-                                RescuePolicy{.max_doublings = settings.max_substep_doublings},
-                                settings.health}),
+                                settings.max_substep_doublings, settings.health}),
       solids_(with_health(solid_settings, settings.health)) {}
 
 namespace {
@@ -195,6 +194,12 @@ const StickySubsteps& World::substeps(BodyId id) const {
   return ref.kind == BodyRef::Kind::kCloth ? cloths_.substeps(ref.index) : solids_.substeps();
 }
 
+const BodyStepCounts& World::step_counts(BodyId id) const {
+  const BodyRef& ref = body_ref(id);
+  FELT_CHECK(ref.kind != BodyRef::Kind::kCollider);
+  return ref.kind == BodyRef::Kind::kCloth ? cloths_.step_counts(ref.index) : solids_.step_counts();
+}
+
 void World::set_step_count(std::uint64_t steps) {
   step_count_ = steps;
   time_ = static_cast<Real>(step_count_) * settings_.time_step;
@@ -216,6 +221,12 @@ StepReport World::step(const std::function<void()>& yield_point) {
       report.unrecoverable_bodies.push_back(cloth_ids_[index]);
     }
   }
+  if (!cloth.over_budget.empty()) {
+    report.flags |= kStepOverBudget;
+    for (std::uint32_t index : cloth.over_budget) {
+      report.over_budget_bodies.push_back(cloth_ids_[index]);
+    }
+  }
   report.max_substeps = cloth.substeps;
   report.cloth_profile = cloth.profile;
   if (!solids_.bodies().empty()) {
@@ -232,6 +243,11 @@ StepReport World::step(const std::function<void()>& yield_point) {
       report.flags |= kStepUnrecoverable;
       report.unrecoverable_bodies.insert(report.unrecoverable_bodies.end(), solid_ids_.begin(),
                                          solid_ids_.end());
+    }
+    if (solid.over_budget) {
+      report.flags |= kStepOverBudget;
+      report.over_budget_bodies.insert(report.over_budget_bodies.end(), solid_ids_.begin(),
+                                       solid_ids_.end());
     }
     report.max_substeps = std::max(report.max_substeps, solid.substeps);
     report.solid_profile = solid.profile;

@@ -45,6 +45,9 @@ enum StepFlag : std::uint32_t {
   kStepOk = 0,
   kStepRescued = 1u << 0,        ///< a body's step failed and was redone with substeps
   kStepUnrecoverable = 1u << 1,  ///< a body could not be rescued; it was rolled back and stopped
+  /// a body's step reached its budget (HealthSettings::step_budget) or an integrator's cap and
+  /// went on with what it could afford
+  kStepOverBudget = 1u << 2,
 };
 
 struct StepReport {
@@ -52,6 +55,7 @@ struct StepReport {
   int max_substeps = 1;                             ///< the most substeps any body needed
   std::vector<std::uint32_t> rescued_bodies;        ///< ids; empty (no allocation) when none
   std::vector<std::uint32_t> unrecoverable_bodies;  ///< ids; empty (no allocation) when none
+  std::vector<std::uint32_t> over_budget_bodies;    ///< ids; empty (no allocation) when none
   StepProfile cloth_profile;  ///< where the cloths' step spent its time (ClothSystem::kStages)
   StepProfile solid_profile;  ///< and the solids' (SolidSystem::kStages)
 };
@@ -105,6 +109,9 @@ class World {
   /// The substeps body `id` (a live cloth or solid) steps with now and how many of its steps
   /// were rescued; solids share theirs.
   const StickySubsteps& substeps(BodyId id) const;
+  /// The substeps body `id` (a live cloth or solid) took in its last step and how many of its
+  /// steps reached their budget; solids share theirs.
+  const BodyStepCounts& step_counts(BodyId id) const;
   SolidSystem& solids() { return solids_; }
   const SolidSystem& solids() const { return solids_; }
   const std::vector<Collider>& colliders() const { return colliders_; }

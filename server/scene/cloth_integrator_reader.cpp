@@ -1,0 +1,71 @@
+#include "scene/cloth_integrator_reader.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "core/cloth/cloth_stable_step.hpp"
+#include "core/integrate/runge_kutta_integrators.hpp"
+#include "core/integrate/xpbd_integrator.hpp"
+
+namespace felt::scene_json {
+
+std::unique_ptr<Integrator> read_cloth_integrator(const ObjectReader& body) {
+  std::string name = "symplectic_euler";
+  std::string name_path = body.path_of("integrator");
+  std::uint32_t substeps = XpbdIntegrator::kDefaultSubsteps;
+  Real tolerance = AdaptiveRungeKutta::kDefaultTolerance;
+  if (body.has("integrator") && body.at("integrator").is_object()) {
+    const ObjectReader integrator(body.at("integrator"), body.path_of("integrator"),
+                                  {"name", "substeps", "tolerance"});
+    name = integrator.string("name", name);
+    name_path = integrator.path_of("name");
+    substeps = integrator.count("substeps", substeps, 1, XpbdIntegrator::kMaxSubsteps);
+    if (integrator.has("substeps") && name != "xpbd") {
+      fail(integrator.path_of("substeps"), "applies to xpbd only");
+    }
+    // below 1e-9 m the error control asks for more internal steps than any budget affords
+    // (each one's error is then rounding); above 0.1 m it controls nothing a cloth shows
+    tolerance = integrator.ranged("tolerance", tolerance, 1e-9, 0.1, "m");
+    if (integrator.has("tolerance") && name != "adaptive_rk") {
+      fail(integrator.path_of("tolerance"), "applies to adaptive_rk only");
+    }
+  } else {
+    name = body.string("integrator", name);
+  }
+  if (name == "xpbd") return std::make_unique<XpbdIntegrator>(static_cast<int>(substeps));
+  if (name == "adaptive_rk") return std::make_unique<AdaptiveRungeKutta>(tolerance);
+  auto integrator = make_integrator(name);
+  if (!integrator) {
+    std::string known;
+    for (std::string_view known_name : integrator_names()) {
+      known += (known.empty() ? "" : ", ") + std::string(known_name);
+    }
+    fail(name_path, "unknown integrator \"" + name + "\" (known: " + known + ")");
+  }
+  return integrator;
+}
+
+void check_stable_step(const ObjectReader& body, const ClothBody& cloth, Real time_step,
+                       const HealthSettings& health) {
+  const Real limit = stable_cloth_step(cloth);
+  const std::string name(cloth.integrator().name());
+  if (!(limit > 0)) {
+    fail(body.path_of("integrator"),
+         name +
+             " gains energy at every step on springs without damping: no step is stable. "
+             "Give every spring kind damping (explicit_euler needs a step of at most "
+             "damping/stiffness), or choose symplectic_euler, leapfrog or implicit_euler");
+  }
+  if (health.auto_substeps && time_step / limit > health.step_budget) {
+    std::ostringstream text;
+    text << "too stiff for " << name << ": a stable step would be " << limit << " s, "
+         << std::ceil(time_step / limit) << " substeps of the time step, beyond the step budget of "
+         << health.step_budget
+         << " (health.step_budget); lower the stiffness, raise the mass or choose an implicit "
+            "integrator";
+    fail(body.path_of("integrator"), text.str());
+  }
+}
+
+}  // namespace felt::scene_json

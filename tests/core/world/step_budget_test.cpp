@@ -1,0 +1,87 @@
+// Bounded cost (issue 27): an absurd adaptive step ends within the world's step budget, counted
+// as work (internal steps), and is reported; a step whose retries the budget cannot afford ends
+// as unrecoverable instead of trying them.
+
+#include <gtest/gtest.h>
+
+#include <utility>
+
+#include "core/cloth/cloth_fixtures.hpp"
+#include "core/cloth/cloth_grid.hpp"
+#include "core/integrate/counting_integrator.hpp"
+#include "core/integrate/runge_kutta_integrators.hpp"
+#include "core/world/world.hpp"
+
+namespace felt {
+namespace {
+
+/// A stiff, light 6 × 6 cloth (k = 1e5 N/m, 1 g) under adaptive_rk at the smallest tolerance a
+/// scene may set, 1e-9 m: its error control asks for thousands of internal steps a step.
+ClothBody stiff_light_cloth() {
+  GridClothSpec spec;
+  spec.nx = spec.ny = 6;
+  spec.total_mass = 1e-3;
+  ClothParams params;
+  params.spring(SpringKind::kStructural) = {true, 1e5, 0.01};
+  params.spring(SpringKind::kShear) = {true, 2e4, 0};
+  auto integrator =
+      std::make_unique<test::CountingIntegrator>(std::make_unique<AdaptiveRungeKutta>(1e-9));
+  ClothBody body("c", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
+                 std::move(integrator));
+  for (std::uint32_t p : grid_pin_indices(spec, GridPinPreset::kTopCorners)) body.pin(p);
+  return body;
+}
+
+TEST(StepBudget, AnAbsurdAdaptiveStepEndsWithinItsBudgetAndIsReported) {
+  constexpr int kBudget = 200;
+  World world(WorldSettings{
+      .gravity = Vec3(0, -9.81, 0), .time_step = 1e-2, .health = {.step_budget = kBudget}});
+  const BodyId id = world.add_body(stiff_light_cloth());
+  auto& counter = static_cast<test::CountingIntegrator&>(world.cloths()[0].integrator());
+  std::uint64_t over_budget = 0;
+  long most = 0;
+  for (int n = 0; n < 20; ++n) {
+    const StepReport report = world.step();
+    const long work = counter.take_work();
+    most = std::max(most, work);
+    // every attempt of the step, every retry and every internal step together
+    EXPECT_LE(work, kBudget) << "step " << n;
+    if (report.flags & kStepOverBudget) {
+      ++over_budget;
+      EXPECT_EQ(report.over_budget_bodies, std::vector<std::uint32_t>{id});
+    }
+    for (const Vec3& x : world.cloths()[0].state().x) ASSERT_TRUE(x.allFinite());
+  }
+  // the error control wanted more than the budget: it got most of it (the last internal steps
+  // of a capped call are longer, and a retry gets only what is left)
+  EXPECT_GT(most, kBudget / 2);
+  EXPECT_GT(over_budget, 0u);
+  EXPECT_EQ(world.step_counts(id).over_budget_steps, over_budget);
+}
+
+TEST(StepBudget, WithoutTheBudgetTheSameStepTakesFarMore) {
+  // the same cloth with the largest budget a scene may set: the work the budget saves
+  World world(WorldSettings{
+      .gravity = Vec3(0, -9.81, 0), .time_step = 1e-2, .health = {.step_budget = 100000}});
+  world.add_body(stiff_light_cloth());
+  auto& counter = static_cast<test::CountingIntegrator&>(world.cloths()[0].integrator());
+  world.step();
+  EXPECT_GT(counter.take_work(), 2000);
+}
+
+TEST(StepBudget, RetriesTheBudgetCannotAffordAreNotTried) {
+  // explicit Euler on an undamped spring: no step is stable, so its automatic substeps ask for
+  // more than any budget; the step takes the budget's worth and reports it
+  World world(
+      WorldSettings{.gravity = Vec3::Zero(), .time_step = 1e-2, .health = {.step_budget = 64}});
+  const BodyId id = world.add_body(test::spring_pair(1, 1e4, 1, 0, "explicit_euler"));
+  world.cloths()[0].state().x[1].x() = 1.1;
+  for (int n = 0; n < 10; ++n) {
+    const StepReport report = world.step();
+    EXPECT_TRUE(report.flags & kStepOverBudget) << "step " << n;
+    EXPECT_LE(world.step_counts(id).substeps, 64);
+  }
+}
+
+}  // namespace
+}  // namespace felt
