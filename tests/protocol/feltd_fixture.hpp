@@ -91,10 +91,11 @@ inline std::string small_cloth_json(double x = 2.0) {
          std::to_string(x) + R"(, 1.5, 0]}, "pin": "top_corners"})";
 }
 
-/// Whether `message` tells of a step its scene rescued with substeps: news of the scene's health,
-/// which a test of something else leaves out.
+/// Whether `message` tells of a step its scene rescued with substeps or cut short at its budget:
+/// news of the scene's health, which a test of something else leaves out.
 inline bool tells_of_a_rescue(const v1::ServerMessage& message) {
-  return message.has_event() && message.event().kind() == v1::EVENT_KIND_STEP_RESCUED;
+  return message.has_event() && (message.event().kind() == v1::EVENT_KIND_STEP_RESCUED ||
+                                 message.event().kind() == v1::EVENT_KIND_STEP_OVER_BUDGET);
 }
 
 /// The messages as text, one a line: what a test names when it got other messages than it expected.
