@@ -40,6 +40,7 @@ ClothModel make_mesh_cloth(const TriangleMesh& mesh, Real total_mass) {
   for (const Triangle& t : mesh.triangles) {
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t i = t[k], j = t[(k + 1) % 3], o = t[(k + 2) % 3];
+      if (i == j) continue;  // a degenerate triangle's edge from a vertex to itself is no spring
       const auto edge = std::minmax(i, j);
       const auto [it, first] = opposite.emplace(edge, o);
       if (first) {

@@ -35,6 +35,15 @@ TEST(MeshCloth, SquareHasFiveEdgesAndOneBendAcrossTheDiagonal) {
   EXPECT_NEAR(model.mass[3], 2.0 / 6, 1e-15);
 }
 
+// A triangle with a repeated corner (an OBJ face may name a vertex twice) has an edge from a
+// vertex to itself: no spring, which would have no length to keep and no direction to push.
+TEST(MeshCloth, ADegenerateTrianglesEdgeFromAVertexToItselfIsNoSpring) {
+  TriangleMesh mesh{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, {}, {{0, 1, 2}, {2, 2, 1}}};
+  const ClothModel model = make_mesh_cloth(mesh, 1.0);
+  EXPECT_EQ(count(model, SpringKind::kStructural), 3u);
+  for (const Spring& s : model.springs) EXPECT_NE(s.i, s.j);
+}
+
 TEST(MeshCloth, ClosedSurfaceHasABendForEveryEdge) {
   // a tetrahedron's surface: 4 faces, 6 edges, each shared by two faces
   TriangleMesh mesh{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)},

@@ -469,14 +469,15 @@ TEST(SolidSystem, StepThatCannotBeRescuedIsRolledBackAndStopped) {
 
 // A step no substep can save costs a few ordinary steps, not the 127 a light body's six
 // doublings would make of hundreds of substeps: the retries stop within max(512, 4 × the first
-// attempt's) substeps.
+// attempt's) substeps, and the whole step within the step budget (health.step_budget).
 TEST(SolidSystem, AStepThatCannotBeRescuedStopsRetryingWithinItsBudget) {
-  const auto last_attempt = [](int first_substeps) {
+  const auto last_attempt = [](int first_substeps, int step_budget = 1000) {
     SolidMaterial material = thesis_material();
     material.model = SolidModel::kShapeMatching;  // max_step alone sets the substeps
     SolidSystem system;
     SolidStepSettings settings = system.settings();
     settings.max_step = kStep / first_substeps;
+    settings.health.step_budget = step_budget;
     system.set_settings(settings);
     system.add_body(box_body({1, 1, 1}, Vec3::Ones(), Vec3(0, 2, 0), material));
     system.bodies()[0].add_external_force(0,
@@ -485,9 +486,10 @@ TEST(SolidSystem, AStepThatCannotBeRescuedStopsRetryingWithinItsBudget) {
     EXPECT_TRUE(stats.unrecoverable);
     return stats.substeps;
   };
-  EXPECT_EQ(last_attempt(2), 2 * 64);     // 4 + 8 + ... + 128 = 252 retried substeps
-  EXPECT_EQ(last_attempt(100), 100 * 2);  // 200, and 400 more would pass 512
-  EXPECT_EQ(last_attempt(600), 600 * 2);  // 1200, and 2400 more would pass 4 × 600
+  EXPECT_EQ(last_attempt(2), 2 * 64);              // 4 + 8 + ... + 128 = 252 retried substeps
+  EXPECT_EQ(last_attempt(100), 100 * 2);           // 200, and 400 more would pass 512
+  EXPECT_EQ(last_attempt(600), 600);               // 1200 more would pass the step budget of 1000
+  EXPECT_EQ(last_attempt(600, 100'000), 600 * 2);  // 1200, and 2400 more would pass 4 × 600
 }
 
 // A shape-matching body has no step limit of its own, so max_step alone sets the substeps: a
