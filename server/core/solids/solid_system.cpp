@@ -91,19 +91,10 @@ const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
   }
   const Real max_speed =
       scaled_speed_limit(speed, size_, h, settings_.health.speed_growth, settings_.max_speed);
-  // the retries within kRescue's budget and, with the first attempt, within the step budget
-  const std::int64_t rescue_budget =
-      std::max(kRescue.min_budget, kRescue.budget_factor * std::int64_t{substeps});
-  std::int64_t retried = 0;
   const RescueOutcome outcome = step_with_rescue(
-      substeps, kRescue.max_doublings,
+      substeps, kRescue,
       [&](int n) { return attempt(h, n, gravity, colliders, max_speed, yield_point); },
-      [&] { restore(); },
-      [&](int next) {
-        if (retried + next > rescue_budget || substeps + retried + next > budget) return false;
-        retried += next;
-        return true;
-      });
+      [&] { restore(); }, budget);
   sticky_.record(outcome);
   stats_.over_budget = stable > budget || outcome.out_of_budget;
   counts_.substeps = outcome.substeps;

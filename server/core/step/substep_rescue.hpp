@@ -48,16 +48,18 @@ RescueOutcome step_with_rescue(int substeps, int max_doublings, Attempt&& attemp
   return outcome;
 }
 
-/// The same within `policy`'s budget of retry substeps.
+/// The same within `policy`'s budget of retry substeps and, with the first attempt's, within
+/// `step_budget` substeps in all.
 template <class Attempt, class Restore>
-RescueOutcome step_with_rescue(int substeps, const RescuePolicy& policy, Attempt&& attempt,
-                               Restore&& restore) {
+RescueOutcome step_with_rescue(
+    int substeps, const RescuePolicy& policy, Attempt&& attempt, Restore&& restore,
+    std::int64_t step_budget = std::numeric_limits<std::int64_t>::max()) {
   const std::int64_t budget =
       std::max(policy.min_budget, policy.budget_factor * std::int64_t{substeps});
-  std::int64_t spent = 0;
+  std::int64_t retried = 0;
   return step_with_rescue(substeps, policy.max_doublings, attempt, restore, [&](int next) {
-    if (spent + next > budget) return false;
-    spent += next;
+    if (retried + next > budget || substeps + retried + next > step_budget) return false;
+    retried += next;
     return true;
   });
 }
