@@ -167,18 +167,35 @@ TEST_F(FeltdLiveClothTest, AClientFeelsSlidesAlongAndGrabsAMovingCloth) {
   // press down into the sag: held on top of the cloth, pushed back up
   v1::ForceUpdate force = move({0, 1.2, 0}, {0, 0.55, 0}, 300, 0);
   // the light cloth bounces off a finger that hits it at 2 m/s (contact comes and goes for tens
-  // of milliseconds): hold still while the bounce dies down
-  force = move({0, 0.55, 0}, {0, 0.55, 0}, 300, 0);
+  // of milliseconds of scene time): hold still until 200 updates in a row touch and the sheet
+  // has sunk onto the finger. The physics thread keeps its own pace and falls behind on a
+  // loaded machine, where the same updates see less of the scene's time.
+  const auto settled = [&](Point at, int in_a_row, const auto& done) {
+    int touching = 0;
+    const auto deadline = std::chrono::steady_clock::now() + scaled(10s);
+    do {
+      force = move(at, at, 1, 0);
+      touching = force.in_contact() ? touching + 1 : 0;
+    } while ((touching < in_a_row || !done()) && std::chrono::steady_clock::now() < deadline);
+  };
+  settled({0, 0.55, 0}, 200, [&] { return force.proxy().y() < 0.6; });
   ASSERT_TRUE(force.in_contact());
   EXPECT_GT(force.force().y(), 1.0);
   EXPECT_GT(force.proxy().y(), 0.55);
-  // slide sideways, pressed in: the cloth never lets the proxy through
+  // slide sideways, pressed in: the cloth never lets the proxy through (it is never pushed
+  // down, its proxy never below the device). The sheet chatters against the finger, and more
+  // when updates come late (a touch keeps pushing until the next one), so contact may come and
+  // go on the way.
   for (int i = 1; i <= 200; ++i) {
     force = client.proxy_update(0, {0.2 * i / 200.0, 0.55, 0});
-    ASSERT_TRUE(force.in_contact()) << "update " << i;
-    ASSERT_GT(force.force().y(), 0) << "update " << i;
+    ASSERT_GE(force.force().y(), 0) << "update " << i;
+    ASSERT_GE(force.proxy().y(), 0.55) << "update " << i;
     std::this_thread::sleep_for(1ms);
   }
+  // still on top where the slide ended, once the scene has caught up with the finger
+  settled({0.2, 0.55, 0}, 20, [&] { return force.contact_point().x() > 0.1; });
+  ASSERT_TRUE(force.in_contact());
+  EXPECT_GT(force.force().y(), 0);
   EXPECT_GT(force.contact_point().x(), 0.1);  // it slid along
   // grab where it touches and lift the cloth
   force = client.proxy_update(0, {0.2, 0.55, 0}, 1);

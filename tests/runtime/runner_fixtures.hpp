@@ -23,7 +23,8 @@ using namespace std::chrono_literals;
 
 /// A horizontal 1 m cloth at y = 0 held at its four corners, without gravity, so that it stays
 /// flat until something touches it.
-inline Scene flat_cloth_scene(Vec3 gravity = Vec3::Zero(), Real time_step = 1e-3) {
+inline Scene flat_cloth_scene(Vec3 gravity = Vec3::Zero(), Real time_step = 1e-3,
+                              HealthSettings health = {}) {
   GridClothSpec spec;
   spec.nx = 11;
   spec.ny = 11;
@@ -37,7 +38,9 @@ inline Scene flat_cloth_scene(Vec3 gravity = Vec3::Zero(), Real time_step = 1e-3
   ClothBody cloth("sheet", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
                   make_integrator("symplectic_euler"));
   for (std::uint32_t p : grid_pin_indices(spec, GridPinPreset::kFourCorners)) cloth.pin(p);
-  Scene scene("flat", World(WorldSettings{gravity, time_step, 100, 6}));
+  WorldSettings settings{gravity, time_step, 100, 6};
+  settings.health = health;
+  Scene scene("flat", World(settings));
   scene.haptics.radius = 0.05;
   scene.haptics.stiffness = 400;
   scene.haptics.max_force = 10;

@@ -8,6 +8,22 @@
 #include <chrono>
 #include <cstdlib>
 
+// GCC defines __SANITIZE_*__; clang (the fuzz build's) tells through __has_feature.
+#if defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define FELT_UNDER_THREAD_SANITIZER 1
+#endif
+#if __has_feature(address_sanitizer)
+#define FELT_UNDER_ADDRESS_SANITIZER 1
+#endif
+#endif
+#if defined(__SANITIZE_THREAD__)
+#define FELT_UNDER_THREAD_SANITIZER 1
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define FELT_UNDER_ADDRESS_SANITIZER 1
+#endif
+
 namespace felt::test {
 
 inline double time_scale() {
@@ -15,9 +31,9 @@ inline double time_scale() {
     const double factor = std::strtod(value, nullptr);
     if (factor >= 1) return factor;
   }
-#if defined(__SANITIZE_THREAD__)
+#if defined(FELT_UNDER_THREAD_SANITIZER)
   return 10;
-#elif defined(__SANITIZE_ADDRESS__)
+#elif defined(FELT_UNDER_ADDRESS_SANITIZER)
   return 4;
 #else
   return 1;
