@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/haptics/passive_stiffness.hpp"
+#include "core/haptics/yielding_contact.hpp"
 
 namespace felt::client {
 namespace {
@@ -39,6 +40,11 @@ LocalRenderer::LocalRenderer(const felt::v1::ProxySettings& settings,
 
 void LocalRenderer::take(const felt::LocalModel& model, double time, double round_trip) {
   surface_.take(model, time);
+  model_push_ = model.push;
+  surface_stiffness_.clear();
+  for (const felt::LocalModelBody& body : model.bodies) {
+    surface_stiffness_.emplace_back(body.body_id, body.stiffness);
+  }
   if (std::isfinite(round_trip) && round_trip >= 0) delay_ = round_trip;
 }
 
@@ -48,16 +54,28 @@ LocalForce LocalRenderer::tick(const felt::Vec3& device, double time) {
     last_.contact.proxy = last_.contact.contact_point = device;
     return last_;
   }
+  // the surface touched last tick says how late its give comes (none touched: unknown)
+  const double touched_stiffness =
+      last_.contact.in_contact ? surface_stiffness(last_.contact.body_id) : 0;
   felt::ProxySettings settings = settings_;
   settings.stiffness = felt::passive_stiffness(settings_.stiffness, options_.device_damping,
-                                               options_.servo_period, delay_);
+                                               options_.servo_period, delay_, touched_stiffness);
   const double dt = god_ ? time - last_time_ : 0;
   if (!god_) god_.emplace(settings, device);
   god_->set_settings(settings);
   last_time_ = time;
-  last_.contact = god_->update(surface_.advance(time), device, dt);
+  const felt::HapticContact contact = god_->update(surface_.advance(time), device, dt);
+  last_.contact = felt::yielding_contact(contact, model_push_, settings.stiffness,
+                                         surface_stiffness(contact.body_id));
   last_.stiffness = settings.stiffness;
   return last_;
+}
+
+double LocalRenderer::surface_stiffness(std::uint32_t body_id) const {
+  for (const auto& [id, stiffness] : surface_stiffness_) {
+    if (id == body_id) return stiffness;
+  }
+  return 0;
 }
 
 felt::v1::LocalContact LocalRenderer::upstream() const {
@@ -75,6 +93,7 @@ felt::v1::LocalContact LocalRenderer::upstream() const {
 std::optional<felt::LocalModel> local_model_from(const felt::v1::LocalModel& model) {
   felt::LocalModel out;
   out.truncated = model.truncated();
+  if (model.has_push()) out.push = {model.push().x(), model.push().y(), model.push().z()};
   for (const felt::v1::LocalModelBody& wire : model.bodies()) {
     const int vertices = wire.vertex_ids_size();
     const int triangles = wire.triangle_ids_size();
@@ -88,6 +107,7 @@ std::optional<felt::LocalModel> local_model_from(const felt::v1::LocalModel& mod
     body.body_id = wire.body_id();
     body.vertex_count = wire.vertex_count();
     body.triangle_count = wire.triangle_count();
+    body.stiffness = wire.stiffness();
     body.triangle_ids.assign(wire.triangle_ids().begin(), wire.triangle_ids().end());
     for (int t = 0; t < triangles; ++t) {
       body.corners.push_back(

@@ -2,14 +2,17 @@
 // A local-model proxy's renderer (docs/protocol.md 7.5): the client side of remote haptics. It
 // runs the server's own god-object (felt_haptics, the same code feltd renders with) at the
 // device's rate against the latest LocalModel the server sent, moved on by its vertex
-// velocities to each tick's time (ExtrapolatedSurface), with the stiffness lowered where the
-// round trip would make the contact active (passive_stiffness). What it felt goes upstream in
-// the next ProxyUpdate (LocalContact) for the server to push the body with.
+// velocities to each tick's time (ExtrapolatedSurface), with the touched surface giving under
+// the device's push as the model's stiffness says (yielding_contact) and the stiffness lowered
+// where the round trip would make the contact active (passive_stiffness). What it felt goes
+// upstream in the next ProxyUpdate (LocalContact) for the server to push the body with.
 //
 // Not thread-safe: the device loop owns it; a model read on the network thread is handed over
 // as a LocalModel (local_model_from) with the time it describes.
 
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "core/haptics/extrapolated_surface.hpp"
 #include "core/haptics/god_object.hpp"
@@ -53,6 +56,11 @@ class LocalRenderer {
   double delay_ = 0;      ///< s: the last round trip
   double last_time_ = 0;  ///< of the last tick
   LocalForce last_;
+  felt::Vec3 model_push_ = felt::Vec3::Zero();  ///< the latest model's push
+  /// per body of the latest model: its surface's stiffness (N/m, 0: unknown)
+  std::vector<std::pair<std::uint32_t, double>> surface_stiffness_;
+
+  double surface_stiffness(std::uint32_t body_id) const;
 };
 
 /// `model` in the core's terms, or nothing when it is malformed (a bad id or a number that is

@@ -29,7 +29,9 @@ def local_model_triangles(model):
     """The triangles of a LocalModel as {body_id: {triangle_id: ((x, y, z) of its 3 corners)}},
     with each body's vertices as {vertex_id: (position, velocity, normal)} beside it:
     ({body_id: triangles}, {body_id: vertices}). Positions are where the surface was age_s
-    before the message was sent; move them on by velocity * time to render later."""
+    before the message was sent; move them on by velocity * time to render later. The surface
+    gives under a push: model.push is the force on the device it shows held in, each body's
+    stiffness (N/m, 0: unknown) how stiff it is (docs/protocol.md 7.5, "How the surface gives")."""
     triangles, vertices = {}, {}
     for body in model.bodies:
         def triple(values, i):

@@ -43,6 +43,7 @@ void put_local_model(const LocalModelCut& cut, std::uint64_t send_ns, v1::LocalM
   const std::uint64_t rendered_ns = steady_ns(cut.rendered_at);
   out.set_age_s((static_cast<double>(send_ns) - static_cast<double>(rendered_ns)) * 1e-9);
   out.set_truncated(cut.model.truncated);
+  if (!cut.model.push.isZero()) put_vec3(cut.model.push, *out.mutable_push());
   const auto put_all = [](const std::vector<Vec3>& from,
                           google::protobuf::RepeatedField<double>& to) {
     to.Reserve(static_cast<int>(3 * from.size()));
@@ -65,6 +66,7 @@ void put_local_model(const LocalModelCut& cut, std::uint64_t send_ns, v1::LocalM
     put_all(body.positions, *wire.mutable_positions());
     put_all(body.velocities, *wire.mutable_velocities());
     put_all(body.normals, *wire.mutable_normals());
+    wire.set_stiffness(body.stiffness);
   }
 }
 

@@ -95,6 +95,30 @@ ProxySample HapticProxy::local_sample(const HapticSurface& surface, const Vec3& 
   return sample;
 }
 
+void HapticProxy::estimate_stiffness(const HapticSurface& surface, const LocalContact& local,
+                                     const Vec3& push, ProxyOutput& out) {
+  const HapticBody* body = surface.find(local.body_id);
+  if (!local.in_contact || !body || local.triangle < 0 ||
+      static_cast<std::size_t>(local.triangle) >= body->triangles.size()) {
+    estimated_body_.reset();
+    return;
+  }
+  if (estimated_body_ != local.body_id) {
+    stiffness_estimate_.reset();
+    estimated_body_ = local.body_id;
+  }
+  const Triangle& corners = body->triangles[static_cast<std::size_t>(local.triangle)];
+  Vec3 point = Vec3::Zero();
+  for (int i = 0; i < 3; ++i) point += local.barycentric[i] * surface.vertex(*body, corners[i]);
+  // along the normal from the touched point to the proxy resting on it
+  const Vec3 outward = local.proxy - point;
+  if (!(outward.norm() > 0)) return;
+  const Vec3 normal = outward.normalized();
+  stiffness_estimate_.add(push.dot(normal), point.dot(normal));
+  out.pushed_body = local.body_id;
+  out.pushed_body_stiffness = stiffness_estimate_.stiffness();
+}
+
 ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec3& device,
                                 std::uint32_t buttons, ReactionAccumulator& reactions,
                                 const LocalContact* local) {
@@ -134,6 +158,8 @@ ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec
         GrabSpring{grab_->body, grab_->vertex, device, settings_.stiffness, settings_.damping};
   } else if (local) {
     sample = local_sample(surface, device, *local);
+    if (sample.push) out.local_push = -sample.push->force;
+    estimate_stiffness(surface, *local, out.local_push, out);
   } else {
     if (out.contact.in_contact && out.contact.triangle >= 0) {
       const HapticBody& body = *surface.find(out.contact.body_id);

@@ -10,6 +10,7 @@
 
 #include "core/haptics/god_object.hpp"
 #include "core/haptics/local_model.hpp"
+#include "core/haptics/surface_stiffness_estimate.hpp"
 #include "runtime/haptic_frame.hpp"
 #include "runtime/local_model_feed.hpp"
 #include "runtime/reaction_accumulator.hpp"
@@ -43,6 +44,12 @@ struct ProxyOutput {
   std::uint32_t grabbed_body = 0;  ///< while grabbing: the body and surface vertex held
   std::uint32_t grabbed_vertex = 0;
   std::optional<LocalModelCut> local_model;  ///< a local-model proxy's next model, when due
+  /// A local-model proxy's update: the force on the device whose opposite the body takes (zero:
+  /// none), and how stiff the touched body's surface has been under the contact's pushes
+  /// (SurfaceStiffnessEstimate; 0: unknown).
+  Vec3 local_push = Vec3::Zero();
+  std::uint32_t pushed_body = 0;
+  Real pushed_body_stiffness = 0;
 };
 
 class HapticProxy {
@@ -92,12 +99,18 @@ class HapticProxy {
   /// What the body feels of a local renderer's contact.
   ProxySample local_sample(const HapticSurface& surface, const Vec3& device,
                            const LocalContact& local) const;
+  /// Adds a local contact pushing with `push` (on the device) to the estimate of how stiff the
+  /// touched surface is; a contact that ends or moves to another body starts a new estimate.
+  void estimate_stiffness(const HapticSurface& surface, const LocalContact& local, const Vec3& push,
+                          ProxyOutput& out);
 
   std::uint64_t key_;
   ProxySettings settings_;
   std::optional<GodObject> god_;
   std::optional<Grab> grab_;
   std::optional<LocalModelFeed> local_model_;
+  SurfaceStiffnessEstimate stiffness_estimate_;
+  std::optional<std::uint32_t> estimated_body_;  ///< whose surface stiffness_estimate_ is of
   SteadyClock::time_point last_update_{};
 };
 

@@ -19,6 +19,11 @@ ProxyOutput render_proxy(HapticProxy& proxy, const HapticFrame& frame, SteadyClo
         cut_local_model(frame.surface_at(1), time_scale > 0 ? stepped / time_scale : 0, centre,
                         feed->request().radius, kMaxLocalModelTriangles),
         frame.to->step, frame.published + frame.interval};
+    LocalModel& model = out.local_model->model;
+    model.push = out.local_push;
+    for (LocalModelBody& body : model.bodies) {
+      if (body.body_id == out.pushed_body) body.stiffness = out.pushed_body_stiffness;
+    }
     feed->sent(frame.to->version, now);
   }
   return out;

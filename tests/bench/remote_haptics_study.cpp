@@ -1,7 +1,7 @@
 // Remote haptics in simulated time (issue 26): every case of docs/results/remote_haptics.md's
 // deterministic section, each written as a `felt touch --log` CSV into OUT_DIR with a list of
 // the cases (cases.tsv: scene, network, mode, remote_haptics.py's MODE, file) for
-// scripts/study-remote-haptics to measure. --quick runs a 0.6 s press on the cube only.
+// scripts/study-remote-haptics to measure. --quick runs the cube at 100 ms only.
 //
 //   remote_haptics_study OUT_DIR [--quick]
 
@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
     RemoteCase c;
     c.scene = std::filesystem::path(FELT_SCENE_DIR) / body.scene;
     c.path = body.path;
-    c.duration = quick ? 0.6 : 3;
+    c.duration = 3;
     const auto run = [&](const std::string& network, const char* mode, const char* kind,
                          const std::string& file) {
       progress.begin(std::string(body.name) + ", " + network + ", " + mode);

@@ -111,6 +111,8 @@ def test_local_model(client, port):
     expect(triangles, f"no triangle within 5 cm: {reply.local_model}")
     for body in reply.local_model.bodies:
         expect(all(t < body.triangle_count for t in body.triangle_ids), "a triangle id too large")
+        expect(body.stiffness == 0, f"a surface stiffness before any push: {body.stiffness}")
+    expect(not reply.local_model.HasField("push"), "a push before any contact")
     for body_vertices in vertices.values():
         for position, velocity, normal in body_vertices.values():
             expect(all(math.isfinite(x) for x in position + velocity + normal), "not finite")

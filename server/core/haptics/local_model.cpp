@@ -1,6 +1,7 @@
 #include "core/haptics/local_model.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <unordered_map>
 
 #include "core/geometry/triangle_geometry.hpp"
@@ -56,6 +57,7 @@ LocalModel cut_local_model(const HapticSurface& surface, Real interval, const Ve
 }
 
 bool well_formed(const LocalModel& model) {
+  if (!within_bounds(model.push)) return false;
   for (const LocalModelBody& body : model.bodies) {
     const std::size_t vertices = body.vertex_ids.size();
     if (body.corners.size() != body.triangle_ids.size() || body.positions.size() != vertices ||
@@ -68,6 +70,7 @@ bool well_formed(const LocalModel& model) {
     for (const std::uint32_t v : body.vertex_ids) {
       if (v >= body.vertex_count) return false;
     }
+    if (!(std::isfinite(body.stiffness) && body.stiffness >= 0)) return false;
     for (const Triangle& corners : body.corners) {
       for (const std::uint32_t v : corners) {
         if (v >= body.vertex_count) return false;

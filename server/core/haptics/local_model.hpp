@@ -24,11 +24,16 @@ struct LocalModelBody {
   std::vector<Vec3> positions;            ///< per vertex of vertex_ids
   std::vector<Vec3> velocities;           ///< m/s
   std::vector<Vec3> normals;              ///< unit
+  /// N/m: how stiff the surface near the proxy is under a push (SurfaceStiffnessEstimate);
+  /// 0: unknown
+  Real stiffness = 0;
 };
 
 struct LocalModel {
   std::vector<LocalModelBody> bodies;
   bool truncated = false;  ///< more triangles were near than max_triangles
+  /// N: the force on the device whose opposite the bodies took when the positions hold
+  Vec3 push = Vec3::Zero();
 };
 
 /// The triangles of `surface` whose nearest point to `centre` is within `radius`, at most

@@ -241,5 +241,47 @@ TEST(PassiveStiffness, FollowsTheDelayedWallsBoundBelowTheProxysStiffness) {
   EXPECT_DOUBLE_EQ(passive_stiffness(400, 0, 1e-3, 0.1), 0);
 }
 
+/// The largest K in [0, cap] with b >= K T/2 + K K / (K + k_o) d, by bisection on the rule
+/// itself (k_o = 0: the whole K late).
+Real largest_passing(Real cap, Real b, Real T, Real d, Real k_o) {
+  const auto passes = [&](Real k) {
+    const Real late_share = k_o > 0 ? k / (k + k_o) : 1;
+    return k * T / 2 + k * late_share * d <= b;
+  };
+  if (passes(cap)) return cap;
+  Real lo = 0, hi = cap;
+  for (int i = 0; i < 200; ++i) {
+    const Real mid = (lo + hi) / 2;
+    (passes(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+TEST(PassiveStiffness, OnlyTheLateShareOfAYieldingSurfaceCountsTheDelay) {
+  // against a surface of known stiffness only K K / (K + k_o) comes a round trip late: the
+  // rule's bound, found by bisection, for surfaces from soft to rigid
+  for (const Real k_o : {10.0, 100.0, 400.0, 2000.0, 1e4, 1e6, 1e9}) {
+    for (const Real d : {0.0, 0.01, 0.05, 0.1, 0.2}) {
+      SCOPED_TRACE(k_o);
+      SCOPED_TRACE(d);
+      const Real k = passive_stiffness(400, 20, 1e-3, d, k_o);
+      EXPECT_NEAR(k, largest_passing(400, 20, 1e-3, d, k_o), 1e-9 * 400);
+      EXPECT_GE(k, passive_stiffness(400, 20, 1e-3, d));  // never below the whole-K rule
+    }
+  }
+  // the cube of the remote-haptics study (k_o about 2 kN/m) keeps the proxy's 400 N/m at 100 ms;
+  // a soft surface is held near the whole-K rule
+  EXPECT_DOUBLE_EQ(passive_stiffness(400, 20, 1e-3, 0.1, 2000), 400);
+  EXPECT_NEAR(passive_stiffness(400, 20, 1e-3, 0.1, 1), passive_stiffness(400, 20, 1e-3, 0.1), 2);
+  // a rigid surface leaves the sampling's bound, K <= 2 b / T
+  EXPECT_NEAR(passive_stiffness(1e6, 20, 1e-3, 0.1, 1e12), 4e4, 1);
+  // unknown, negative or non-finite: the whole K late
+  EXPECT_DOUBLE_EQ(passive_stiffness(400, 20, 1e-3, 0.1, 0), passive_stiffness(400, 20, 1e-3, 0.1));
+  EXPECT_DOUBLE_EQ(passive_stiffness(400, 20, 1e-3, 0.1, -5),
+                   passive_stiffness(400, 20, 1e-3, 0.1));
+  EXPECT_DOUBLE_EQ(passive_stiffness(400, 20, 1e-3, 0.1, std::numeric_limits<Real>::infinity()),
+                   passive_stiffness(400, 20, 1e-3, 0.1));
+}
+
 }  // namespace
 }  // namespace felt
