@@ -1,6 +1,7 @@
 // The remote-haptics study in simulated time (tests/bench/remote_haptics_run.hpp): a short press
 // on the cube over a 100 ms round trip, with jitter and loss, gives the same samples bit for bit
-// on a second run, and each rendering does what its mode says.
+// on a second run, each rendering does what its mode says, and the local model holds the
+// press's force over a 100 ms round trip.
 
 #include "remote_haptics_run.hpp"
 
@@ -61,6 +62,21 @@ TEST(RemoteHapticsRun, ASeedChangesOnlyAJitteredNetwork) {
   bool differ = false;
   for (std::size_t i = 0; i < a.size(); ++i) differ |= a[i].round_trip != b[i].round_trip;
   EXPECT_TRUE(differ);
+}
+
+TEST(RemoteHapticsRun, TheLocalModelHoldsTheCubesForceOverA100msRoundTrip) {
+  // the held press at its end, against the same press rendered with no delay: the surface's give
+  // predicted from the stiffness the server sends, and the full stiffness kept for a stiff cube
+  const auto reference = run_remote_case(short_press(Rendering::kRoundTrip, {}));
+  const auto local = run_remote_case(short_press(Rendering::kLocalModel, {0.1, 0, 0, 1}));
+  ASSERT_EQ(reference.size(), local.size());
+  double felt = 0, expected = 0;
+  for (std::size_t i = local.size() - 50; i < local.size(); ++i) {
+    felt += local[i].force.z() / 50;
+    expected += reference[i].force.z() / 50;
+  }
+  EXPECT_GT(expected, 3);  // 1.5 cm below the top, less the cube's give
+  EXPECT_NEAR(felt, expected, 0.1 * expected);
 }
 
 }  // namespace

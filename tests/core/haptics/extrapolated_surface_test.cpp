@@ -130,6 +130,18 @@ TEST(LocalModel, AModelWithABadIdOrNumberIsNotWellFormed) {
   bad = good;
   bad.bodies[0].triangle_ids.pop_back();
   EXPECT_FALSE(well_formed(bad));
+  // how the surface gives: a stiffness that is negative or not finite, a push that is not
+  bad = good;
+  bad.bodies[0].stiffness = -1;
+  EXPECT_FALSE(well_formed(bad));
+  bad.bodies[0].stiffness = std::numeric_limits<Real>::infinity();
+  EXPECT_FALSE(well_formed(bad));
+  bad = good;
+  bad.push.z() = std::numeric_limits<Real>::quiet_NaN();
+  EXPECT_FALSE(well_formed(bad));
+  bad.push.z() = 2;  // a push and a stiffness in range are fine
+  bad.bodies[0].stiffness = 1500;
+  EXPECT_TRUE(well_formed(bad));
 }
 
 TEST(ExtrapolatedSurface, ASheetMovingAtConstantVelocityIsWhereItsVelocitiesPutIt) {
