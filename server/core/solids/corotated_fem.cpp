@@ -48,7 +48,8 @@ CorotatedFem::CorotatedFem(const TetMesh& rest, const FemMaterial& material)
       }
     }
   }
-  largest_stiffness_ = largest_eigenvalue(block_matrix(node_count_, stiffness));
+  rest_stiffness_ = block_matrix(node_count_, stiffness);
+  largest_stiffness_ = largest_eigenvalue(rest_stiffness_);
 }
 
 Mat3 CorotatedFem::deformation_gradient(const Element& e, std::span<const Vec3> x) {

@@ -7,6 +7,8 @@
 #include <span>
 #include <vector>
 
+#include <Eigen/SparseCore>
+
 #include "core/geometry/tet_mesh.hpp"
 #include "core/solids/node_mask.hpp"
 #include "core/solids/solid_body.hpp"
@@ -32,6 +34,8 @@ class CorotatedFem {
 
   /// λ_max of the linear stiffness matrix K at rest, N/m, for the explicit step limit.
   Real largest_stiffness_eigenvalue() const { return largest_stiffness_; }
+  /// K at rest (3n × 3n), for how stiff the body is at a point (solid_point_compliance).
+  const Eigen::SparseMatrix<Real>& rest_stiffness() const { return rest_stiffness_; }
   /// λ_max of the damping matrix β K, N·s/m.
   Real largest_damping_eigenvalue() const { return damping_ * largest_stiffness_; }
 
@@ -51,6 +55,7 @@ class CorotatedFem {
   Real mu_, lambda_, damping_;
   std::vector<Element> elements_;
   std::size_t node_count_;
+  Eigen::SparseMatrix<Real> rest_stiffness_;
   Real largest_stiffness_ = 0;
 };
 

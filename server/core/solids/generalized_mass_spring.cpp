@@ -90,7 +90,8 @@ GeneralizedMassSpring::GeneralizedMassSpring(const TetMesh& rest, const TetTopol
                           stiffness);
     }
   }
-  largest_stiffness_ = largest_eigenvalue(block_matrix(node_count_, stiffness));
+  rest_stiffness_ = block_matrix(node_count_, stiffness);
+  largest_stiffness_ = largest_eigenvalue(rest_stiffness_);
   largest_damping_ = largest_eigenvalue(block_matrix(node_count_, damping));
 }
 

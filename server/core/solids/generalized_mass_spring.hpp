@@ -15,6 +15,8 @@
 #include <span>
 #include <vector>
 
+#include <Eigen/SparseCore>
+
 #include "core/geometry/tet_mesh.hpp"
 #include "core/integrate/linear_pair.hpp"
 #include "core/solids/node_mask.hpp"
@@ -42,6 +44,8 @@ class GeneralizedMassSpring {
 
   /// λ_max of the stiffness matrix K = −∂f/∂x at rest, N/m, for the explicit step limit.
   Real largest_stiffness_eigenvalue() const { return largest_stiffness_; }
+  /// K at rest (3n × 3n), for how stiff the body is at a point (solid_point_compliance).
+  const Eigen::SparseMatrix<Real>& rest_stiffness() const { return rest_stiffness_; }
   /// λ_max of the damping matrix D = −∂f/∂v, N·s/m.
   Real largest_damping_eigenvalue() const { return largest_damping_; }
 
@@ -64,6 +68,7 @@ class GeneralizedMassSpring {
   std::vector<Volume> volumes_;
   std::vector<Area> areas_;
   std::size_t node_count_;
+  Eigen::SparseMatrix<Real> rest_stiffness_;
   Real largest_stiffness_ = 0, largest_damping_ = 0;
 };
 

@@ -119,6 +119,18 @@ SolidBody::SolidBody(std::string name, TetMesh mesh, SolidMaterial material)
   set_material(material);
 }
 
+const Eigen::SparseMatrix<Real>* SolidBody::rest_stiffness() const {
+  return std::visit(
+      [](const auto& model) -> const Eigen::SparseMatrix<Real>* {
+        if constexpr (std::is_same_v<std::decay_t<decltype(model)>, ShapeMatching>) {
+          return nullptr;
+        } else {
+          return &model.rest_stiffness();
+        }
+      },
+      model_state_->model);
+}
+
 SolidBody::~SolidBody() = default;
 SolidBody::SolidBody(SolidBody&&) noexcept = default;
 SolidBody& SolidBody::operator=(SolidBody&&) noexcept = default;

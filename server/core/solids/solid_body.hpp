@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include <Eigen/SparseCore>
+
 #include "core/geometry/tet_mesh.hpp"
 #include "core/integrate/integrator.hpp"
 #include "core/solids/embedded_surface.hpp"
@@ -185,6 +187,8 @@ class SolidBody {
   void finish_step(Real h);
   /// The largest step this body's stiffness allows for the explicit integration, s.
   Real stable_time_step() const;
+  /// K = −∂f/∂x of the model at rest (3n × 3n), or null for shape matching (no force model).
+  const Eigen::SparseMatrix<Real>* rest_stiffness() const;
 
   Real kinetic_energy() const;
   Real elastic_energy() const;
