@@ -1,5 +1,7 @@
 #include "runtime/proxy_render.hpp"
 
+#include "runtime/local_model_stiffness.hpp"
+
 namespace felt {
 
 ProxyOutput render_proxy(HapticProxy& proxy, const HapticFrame& frame, SteadyClock::time_point now,
@@ -21,9 +23,8 @@ ProxyOutput render_proxy(HapticProxy& proxy, const HapticFrame& frame, SteadyClo
         frame.to->step, frame.published + frame.interval};
     LocalModel& model = out.local_model->model;
     model.push = out.local_push;
-    for (LocalModelBody& body : model.bodies) {
-      if (body.body_id == out.pushed_body) body.stiffness = out.pushed_body_stiffness;
-    }
+    set_local_model_stiffness(model, *frame.to, centre, local, out.pushed_body,
+                              out.pushed_body_stiffness);
     feed->sent(frame.to->version, now);
   }
   return out;

@@ -1,6 +1,10 @@
 #include "runtime/snapshot.hpp"
 
+#include <cmath>
+
+#include "core/cloth/cloth_point_compliance.hpp"
 #include "core/geometry/surface_normals.hpp"
+#include "core/solids/solid_point_compliance.hpp"
 
 namespace felt {
 namespace {
@@ -18,6 +22,20 @@ SharedTriangles solid_surface(const SolidBody& body, const SharedTriangles& prev
   positions = body.positions();
   return previous ? previous
                   : std::make_shared<const std::vector<Triangle>>(body.topology().surface);
+}
+
+/// Gives `out` the point compliance of `before` (the same body's previous snapshot) while it is
+/// recent; false when it must be found again.
+bool share_compliance(const BodySnapshot* before, Real time, BodySnapshot& out) {
+  if (!before || !before->compliance_time ||
+      !(std::abs(time - *before->compliance_time) < kComplianceRefresh) ||
+      before->surface != out.surface) {
+    return false;
+  }
+  out.compliance = before->compliance;
+  out.prompt_compliance = before->prompt_compliance;
+  out.compliance_time = before->compliance_time;
+  return true;
 }
 
 }  // namespace
@@ -39,6 +57,11 @@ std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnap
       out.surface = SharedTriangles(body.shared_model(), &body.model().triangles);
       out.cloth = body.shared_model();
       out.positions = body.state().x;
+      if (!share_compliance(previous ? previous->find(id, at) : nullptr, world.time(), out)) {
+        out.compliance = point_compliance(body);
+        out.prompt_compliance = point_compliance(body, kComplianceHorizon);
+        out.compliance_time = world.time();
+      }
     } else {
       const SolidBody& body = world.solids().bodies()[ref.index];
       out.name = body.name();
@@ -46,10 +69,27 @@ std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnap
       out.surface = solid_surface(body, before ? before->surface : nullptr, out.positions);
       out.solid = BodySnapshot::SolidShape{body.shared_rest(), body.shared_embedded_surface(), {}};
       if (out.solid->embedded) out.solid->nodes = body.positions();
+      if (!share_compliance(before, world.time(), out)) {
+        out.compliance = point_compliance(body, world.colliders());
+        out.prompt_compliance = point_compliance(body, world.colliders(), kComplianceHorizon);
+        out.compliance_time = world.time();
+      }
     }
     compute_vertex_normals(out.positions, out.triangles(), out.normals);
   }
   return snapshot;
+}
+
+void BodySnapshot::add_load(std::uint32_t vertex, Real weight,
+                            std::vector<WeightedNode>& load) const {
+  if (solid && solid->embedded) {
+    const EmbeddedSurface& fine = *solid->embedded;
+    if (vertex >= fine.vertex_count() || fine.tet[vertex] >= solid->rest->tets.size()) return;
+    const Tetrahedron& tet = solid->rest->tets[fine.tet[vertex]];
+    for (int i = 0; i < 4; ++i) load.push_back({tet[i], weight * fine.weights[vertex][i]});
+    return;
+  }
+  load.push_back({vertex, weight});
 }
 
 const BodySnapshot* SceneSnapshot::find(BodyId id, std::size_t hint) const {

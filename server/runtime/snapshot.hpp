@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/math/point_compliance.hpp"
 #include "core/world/world.hpp"
 
 namespace felt {
@@ -31,6 +32,17 @@ struct BodySnapshot {
     std::vector<Vec3> nodes;  ///< the lattice's nodes now, when `embedded` (else `positions`)
   };
   std::optional<SolidShape> solid;  ///< empty for a cloth
+  /// How stiff the body is at its points (point_compliance; over its nodes: a cloth's particles,
+  /// a solid's lattice nodes): at rest (`compliance`) and under a push held for
+  /// kComplianceHorizon (`prompt_compliance`), found at simulated time `compliance_time` and
+  /// shared by the snapshots after it until found again (kComplianceRefresh).
+  PointCompliance compliance;
+  PointCompliance prompt_compliance;
+  std::optional<Real> compliance_time;
+
+  /// Adds to `load` the nodes that carry surface vertex `vertex` with `weight` (a solid's fine
+  /// vertex: its tetrahedron's nodes by its barycentric coordinates).
+  void add_load(std::uint32_t vertex, Real weight, std::vector<WeightedNode>& load) const;
 
   const std::vector<Triangle>& triangles() const { return *surface; }
 };
@@ -46,6 +58,17 @@ struct SceneSnapshot {
   /// The body with id `id` (looked for at `hint` first), or null.
   const BodySnapshot* find(BodyId id, std::size_t hint = 0) const;
 };
+
+/// Simulated seconds a body's point compliance is kept before it is found again: a cloth's
+/// stiffness across itself is its tension's, which changes with its shape (a swing, a push), and
+/// any body's with its constants, its pins and what it rests on; two sparse factorizations per
+/// body this often.
+inline constexpr Real kComplianceRefresh = 0.05;
+/// s: how long a push is held for BodySnapshot::prompt_compliance: the shortest round trip at
+/// which a local model's surface gives under the device's push before the server shows it
+/// (runtime/local_model_stiffness); a point whose give over it is far from its static give is
+/// answering by its inertia.
+inline constexpr Real kComplianceHorizon = 0.05;
 
 /// Copies what clients see of `world` now, sharing the surfaces of `previous` (the last
 /// snapshot of the same world, or null).

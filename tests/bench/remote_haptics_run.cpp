@@ -221,7 +221,32 @@ class SimulatedDevice {
   std::vector<RemoteSample> samples_;
 };
 
+DevicePath through(const std::vector<std::pair<double, Vec3>>& keys) {
+  DevicePath path;
+  path.shape = DevicePath::Shape::kSamples;
+  for (const auto& [time, position] : keys) path.samples.push_back(DeviceSample{time, position, 0});
+  return path;
+}
+
 }  // namespace
+
+DevicePath cube_press_path() {
+  return through({{0, {-0.05, 0, 0.3}},
+                  {0.5, {-0.05, 0, 0.23}},
+                  {1.0, {-0.05, 0, 0.205}},
+                  {2.0, {0.05, 0, 0.205}},
+                  {2.5, {0.05, 0, 0.3}},
+                  {3.0, {0.05, 0, 0.3}}});
+}
+
+DevicePath curtain_press_path() {
+  return through({{0, {-0.1, 1.3, 0.08}},
+                  {0.5, {-0.1, 1.3, 0.01}},
+                  {1.0, {-0.1, 1.3, -0.03}},
+                  {2.0, {0.1, 1.3, -0.03}},
+                  {2.5, {0.1, 1.3, 0.08}},
+                  {3.0, {0.1, 1.3, 0.08}}});
+}
 
 std::vector<RemoteSample> run_remote_case(const RemoteCase& c) {
   auto scene = load_scene_file(c.scene);

@@ -60,6 +60,14 @@ struct RemoteSample {
   double round_trip = 0;  ///< s: of this update (round trips) or the last measured (local)
 };
 
+/// The study's device paths (3 s): 0.5 s to 1 cm above the surface (the 2 cm proxy touches 2 cm
+/// above it), 0.5 s pressing below the surface's rest, 1 s sliding across, 0.5 s pulling out,
+/// 0.5 s away. The cube (scenes/pressed_cube.json, z up) from above, 1.5 cm into its top, 10 cm
+/// across; the curtain (scenes/default.json) as scripts/bench-remote-haptics's, 3 cm behind its
+/// rest, 20 cm across ("toward -z" is into both surfaces).
+DevicePath cube_press_path();
+DevicePath curtain_press_path();
+
 /// Runs `c`; throws std::runtime_error when its scene does not load.
 std::vector<RemoteSample> run_remote_case(const RemoteCase& c);
 

@@ -1,9 +1,10 @@
 // Remote haptics in simulated time (issue 26): every case of docs/results/remote_haptics.md's
 // deterministic section, each written as a `felt touch --log` CSV into OUT_DIR with a list of
 // the cases (cases.tsv: scene, network, mode, remote_haptics.py's MODE, file) for
-// scripts/study-remote-haptics to measure. --quick runs the cube at 100 ms only.
+// scripts/study-remote-haptics to measure. --quick runs the cube at 100 ms only, --only BODY
+// every case of one body (cube or curtain).
 //
-//   remote_haptics_study OUT_DIR [--quick]
+//   remote_haptics_study OUT_DIR [--quick | --only BODY]
 
 #include <cstdio>
 #include <fstream>
@@ -16,18 +17,9 @@
 namespace {
 
 using felt::DevicePath;
-using felt::DeviceSample;
-using felt::Vec3;
 using felt::study::RemoteCase;
 using felt::study::Rendering;
 using felt::study::SimulatedNetwork;
-
-DevicePath through(const std::vector<std::pair<double, Vec3>>& keys) {
-  DevicePath path;
-  path.shape = DevicePath::Shape::kSamples;
-  for (const auto& [time, position] : keys) path.samples.push_back(DeviceSample{time, position, 0});
-  return path;
-}
 
 struct Body {
   const char* name;
@@ -35,28 +27,11 @@ struct Body {
   DevicePath path;
 };
 
-/// 0.5 s to 1 cm above the surface (the 2 cm proxy touches 2 cm above it), 0.5 s pressing
-/// `depth` below the surface's rest, 1 s sliding 10 or 20 cm across, 0.5 s pulling out, 0.5 s
-/// away: the curtain's as scripts/bench-remote-haptics's, the cube's from above (its scene is
-/// z-up, so "toward -z" is into both surfaces).
 std::vector<Body> bodies(bool quick) {
-  const std::string dir = FELT_SCENE_DIR;
   std::vector<Body> out;
-  out.push_back({"cube", "pressed_cube.json",
-                 through({{0, {-0.05, 0, 0.3}},
-                          {0.5, {-0.05, 0, 0.23}},
-                          {1.0, {-0.05, 0, 0.205}},
-                          {2.0, {0.05, 0, 0.205}},
-                          {2.5, {0.05, 0, 0.3}},
-                          {3.0, {0.05, 0, 0.3}}})});
+  out.push_back({"cube", "pressed_cube.json", felt::study::cube_press_path()});
   if (quick) return out;
-  out.push_back({"curtain", "default.json",
-                 through({{0, {-0.1, 1.3, 0.08}},
-                          {0.5, {-0.1, 1.3, 0.01}},
-                          {1.0, {-0.1, 1.3, -0.03}},
-                          {2.0, {0.1, 1.3, -0.03}},
-                          {2.5, {0.1, 1.3, 0.08}},
-                          {3.0, {0.1, 1.3, 0.08}}})});
+  out.push_back({"curtain", "default.json", felt::study::curtain_press_path()});
   return out;
 }
 
@@ -68,12 +43,13 @@ struct Network {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2 || (argc == 3 && std::string(argv[2]) != "--quick") || argc > 3) {
-    std::fprintf(stderr, "usage: remote_haptics_study OUT_DIR [--quick]\n");
+  const bool quick = argc == 3 && std::string(argv[2]) == "--quick";
+  const bool only = argc == 4 && std::string(argv[2]) == "--only";
+  if (argc != 2 && !quick && !only) {
+    std::fprintf(stderr, "usage: remote_haptics_study OUT_DIR [--quick | --only BODY]\n");
     return 2;
   }
   const std::filesystem::path out_dir = argv[1];
-  const bool quick = argc == 3;
   std::filesystem::create_directories(out_dir);
   const std::vector<Network> networks =
       quick ? std::vector<Network>{{"100 ms", {0.1, 0, 0, 1}}}
@@ -84,7 +60,14 @@ int main(int argc, char** argv) {
                                    {"200 ms", {0.2, 0, 0, 1}},
                                    {"50 ms +-10 ms", {0.05, 0.01, 0, 1}},
                                    {"50 ms, 1 % loss", {0.05, 0, 0.01, 1}}};
-  const std::vector<Body> scenes = bodies(quick);
+  std::vector<Body> scenes = bodies(quick);
+  if (only) {
+    std::erase_if(scenes, [&](const Body& body) { return body.name != std::string(argv[3]); });
+    if (scenes.empty()) {
+      std::fprintf(stderr, "remote_haptics_study: no body %s (cube, curtain)\n", argv[3]);
+      return 2;
+    }
+  }
   felt::study::Progress progress(static_cast<int>(scenes.size() * (1 + 2 * networks.size())));
   std::ofstream cases(out_dir / "cases.tsv");
   for (const Body& body : scenes) {
