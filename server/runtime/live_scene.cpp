@@ -26,7 +26,8 @@ SceneEvent LiveScene::event(SceneEvent::Kind kind, ClientId by) const {
 }
 
 void LiveScene::publish() {
-  auto snapshot = make_snapshot(scene.world, latest_.load().get());
+  auto snapshot = make_snapshot(scene.world, latest_.load().get(),
+                                local_models_.load(std::memory_order_relaxed));
   snapshot->version = ++published_;
   latest_.store(std::move(snapshot));
 }

@@ -5,6 +5,7 @@
 // thread once it has started (before that, to whoever starts it); the publications are read by
 // any thread.
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -46,6 +47,10 @@ class LiveScene {
 
   /// Publishes a snapshot of the world now.
   void publish();
+  /// A local-model proxy renders in the scene: its snapshots carry each body's point compliance
+  /// from now on (the bodies' stiffness for the local models; two sparse factorizations per body
+  /// every kComplianceRefresh, which a scene no remote device touches does not pay). Any thread.
+  void serve_local_models() { local_models_.store(true, std::memory_order_relaxed); }
   /// Publishes a snapshot and a catalog after bodies came or went.
   void publish_bodies();
   /// Every body of the scene now belongs to its owner (a new or a reset scene).
@@ -61,6 +66,7 @@ class LiveScene {
   ClientId owner_;
   Published<SceneSnapshot> latest_;
   std::uint64_t published_ = 0;
+  std::atomic<bool> local_models_{false};
   Published<BodyCatalog> catalog_;
   /// the owner of each body, by id; published through catalog_
   std::vector<std::pair<BodyId, ClientId>> owners_;

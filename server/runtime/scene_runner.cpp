@@ -99,7 +99,8 @@ ProxyOutput SceneRunner::render(HapticProxy& proxy, const Vec3& device, std::uin
   const auto frame = haptic_frames_.current();
   const SteadyClock::time_point now = SteadyClock::now();
   Real scale = 0;
-  if (proxy.local_model()) {  // only a local model needs the scene's pace
+  if (proxy.local_model()) {  // only a local model needs the scene's pace and point compliance
+    live_.serve_local_models();
     std::lock_guard lock(stats_mutex_);
     scale = stats_.time_scale;
   }

@@ -40,7 +40,8 @@ bool share_compliance(const BodySnapshot* before, Real time, BodySnapshot& out) 
 
 }  // namespace
 
-std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnapshot* previous) {
+std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnapshot* previous,
+                                             bool with_compliance) {
   auto snapshot = std::make_shared<SceneSnapshot>();
   snapshot->step = world.step_count();
   snapshot->sim_time = world.time();
@@ -57,7 +58,8 @@ std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnap
       out.surface = SharedTriangles(body.shared_model(), &body.model().triangles);
       out.cloth = body.shared_model();
       out.positions = body.state().x;
-      if (!share_compliance(previous ? previous->find(id, at) : nullptr, world.time(), out)) {
+      if (with_compliance &&
+          !share_compliance(previous ? previous->find(id, at) : nullptr, world.time(), out)) {
         out.compliance = point_compliance(body);
         out.prompt_compliance = point_compliance(body, kComplianceHorizon);
         out.compliance_time = world.time();
@@ -69,7 +71,7 @@ std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnap
       out.surface = solid_surface(body, before ? before->surface : nullptr, out.positions);
       out.solid = BodySnapshot::SolidShape{body.shared_rest(), body.shared_embedded_surface(), {}};
       if (out.solid->embedded) out.solid->nodes = body.positions();
-      if (!share_compliance(before, world.time(), out)) {
+      if (with_compliance && !share_compliance(before, world.time(), out)) {
         out.compliance = point_compliance(body, world.colliders());
         out.prompt_compliance = point_compliance(body, world.colliders(), kComplianceHorizon);
         out.compliance_time = world.time();

@@ -35,7 +35,8 @@ struct BodySnapshot {
   /// How stiff the body is at its points (point_compliance; over its nodes: a cloth's particles,
   /// a solid's lattice nodes): at rest (`compliance`) and under a push held for
   /// kComplianceHorizon (`prompt_compliance`), found at simulated time `compliance_time` and
-  /// shared by the snapshots after it until found again (kComplianceRefresh).
+  /// shared by the snapshots after it until found again (kComplianceRefresh); unknown in a
+  /// snapshot made without it (make_snapshot).
   PointCompliance compliance;
   PointCompliance prompt_compliance;
   std::optional<Real> compliance_time;
@@ -71,8 +72,10 @@ inline constexpr Real kComplianceRefresh = 0.05;
 inline constexpr Real kComplianceHorizon = 0.05;
 
 /// Copies what clients see of `world` now, sharing the surfaces of `previous` (the last
-/// snapshot of the same world, or null).
+/// snapshot of the same world, or null); with `with_compliance` also each body's point compliance
+/// (shared from `previous` while recent), for local models; without, every body's is unknown.
 std::shared_ptr<SceneSnapshot> make_snapshot(const World& world,
-                                             const SceneSnapshot* previous = nullptr);
+                                             const SceneSnapshot* previous = nullptr,
+                                             bool with_compliance = false);
 
 }  // namespace felt

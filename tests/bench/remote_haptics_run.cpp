@@ -88,7 +88,8 @@ class SimulatedServer {
         step_(nanoseconds(scene_.world.settings().time_step)),
         proxy_(1, scene_.haptics) {
     if (c.rendering == Rendering::kLocalModel) proxy_.enable_local_model({c.model_radius, 0});
-    snapshot_ = make_snapshot(scene_.world);
+    local_models_ = c.rendering == Rendering::kLocalModel;
+    snapshot_ = make_snapshot(scene_.world, nullptr, local_models_);
     frame_ = make_haptic_frame(snapshot_, nullptr, nullptr, scene_.haptic_structure, at(0));
   }
 
@@ -101,7 +102,7 @@ class SimulatedServer {
     scene_.world.step();
     stepped_to_ += step_;
     const std::uint64_t version = snapshot_->version + 1;
-    snapshot_ = make_snapshot(scene_.world, snapshot_.get());
+    snapshot_ = make_snapshot(scene_.world, snapshot_.get(), local_models_);
     snapshot_->version = version;  // a new publication, as LiveScene::publish numbers them
     frame_ = make_haptic_frame(snapshot_, frame_.get(), nullptr, scene_.haptic_structure,
                                at(stepped_to_));
@@ -134,6 +135,7 @@ class SimulatedServer {
   Nanoseconds step_;
   Nanoseconds stepped_to_ = 0;
   HapticProxy proxy_;
+  bool local_models_ = false;  ///< snapshots carry point compliance, as feltd's do for them
   ReactionAccumulator reactions_;
   std::shared_ptr<SceneSnapshot> snapshot_;
   std::shared_ptr<HapticFrame> frame_;
