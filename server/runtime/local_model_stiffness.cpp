@@ -55,9 +55,10 @@ std::optional<Real> own_stiffness(const BodySnapshot& body, const LocalModelBody
   const Vec3 n = point.direction.normalized();
   const Real at_rest = body.compliance.stiffness(point.load, n);
   const Real prompt = body.prompt_compliance.stiffness(point.load, n);
-  // a point that a push held for the horizon moves by less than half its static give answers
-  // it by its inertia (or a body that nothing holds): no spring stands for that
   if (!(prompt > 0)) return std::nullopt;  // a point on no free node
+  // a point that a push held for the horizon moves by less than half its static give (or that
+  // has no static stiffness: nothing holds its body) answers it by its inertia: no spring
+  // stands for that
   return prompt <= kInertialRatio * at_rest ? at_rest : 0;
 }
 
