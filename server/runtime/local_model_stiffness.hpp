@@ -13,8 +13,8 @@
 // 50 ms), it swings on after the push and back, and the copy is better held rigid: 0 (unknown)
 // is sent, whatever the fit says. Otherwise the larger of the static stiffness (everything else
 // has settled: the body is not softer under a push it has had time to answer) and the fit
-// (stiffer where damping or the contact's shape make it so). Without a model (shape matching),
-// the fit.
+// (stiffer where damping or the contact's shape make it so). Without a model (shape matching, or a
+// body too large for its snapshot to carry one: snapshot.cpp's kMaxComplianceNodes), the fit.
 
 #include <cstdint>
 #include <optional>

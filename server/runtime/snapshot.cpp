@@ -24,6 +24,13 @@ SharedTriangles solid_surface(const SolidBody& body, const SharedTriangles& prev
                   : std::make_shared<const std::vector<Triangle>>(body.topology().surface);
 }
 
+/// The most nodes a body's point compliance is found for: its two sparse factorizations took
+/// 33 ms for the default curtain's 400 particles, 386 ms for 1,600 and 1.07 s for the 10,000 of
+/// scenes/service_bench.json (2 cores, load 4), every kComplianceRefresh on the physics thread;
+/// a larger body keeps the fit to the pushes alone (local_model_stiffness) until this is done
+/// off that thread or over the nodes near the proxy only.
+constexpr std::size_t kMaxComplianceNodes = 1000;
+
 /// Gives `out` the point compliance of `before` (the same body's previous snapshot) while it is
 /// recent; false when it must be found again.
 bool share_compliance(const BodySnapshot* before, Real time, BodySnapshot& out) {
@@ -58,7 +65,7 @@ std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnap
       out.surface = SharedTriangles(body.shared_model(), &body.model().triangles);
       out.cloth = body.shared_model();
       out.positions = body.state().x;
-      if (with_compliance &&
+      if (with_compliance && body.model().particle_count() <= kMaxComplianceNodes &&
           !share_compliance(previous ? previous->find(id, at) : nullptr, world.time(), out)) {
         out.compliance = point_compliance(body);
         out.prompt_compliance = point_compliance(body, kComplianceHorizon);
@@ -71,7 +78,8 @@ std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnap
       out.surface = solid_surface(body, before ? before->surface : nullptr, out.positions);
       out.solid = BodySnapshot::SolidShape{body.shared_rest(), body.shared_embedded_surface(), {}};
       if (out.solid->embedded) out.solid->nodes = body.positions();
-      if (with_compliance && !share_compliance(before, world.time(), out)) {
+      if (with_compliance && body.node_count() <= kMaxComplianceNodes &&
+          !share_compliance(before, world.time(), out)) {
         out.compliance = point_compliance(body, world.colliders());
         out.prompt_compliance = point_compliance(body, world.colliders(), kComplianceHorizon);
         out.compliance_time = world.time();
