@@ -8,6 +8,7 @@
 #include <chrono>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -56,6 +57,17 @@ class FeltdTest : public ::testing::Test {
 
   std::unique_ptr<FeltdProcess> server_;
 };
+
+/// Polls `done` every 5 ms until it holds or `timeout` (scaled) has passed: whether it held.
+template <typename Predicate>
+bool eventually(Predicate done, std::chrono::milliseconds timeout = 5s) {
+  const auto deadline = std::chrono::steady_clock::now() + scaled(timeout);
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(5ms);
+  }
+  return true;
+}
 
 /// Runs `call` and expects it to throw the server's error `code`, whose message says `says`.
 template <typename Call>
