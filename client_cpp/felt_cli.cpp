@@ -164,7 +164,8 @@ int main(int argc, char** argv) {
 
   v1::SetBodyParameters parameters;
   std::string integrator;
-  double drag = 0, structural = 0, shear = 0, bend = 0, max_strain = 0, damping = 0, friction = 0;
+  double drag = 0, structural = 0, shear = 0, bend = 0, max_strain = 0, damping = 0, friction = 0,
+         max_step = 0;
   CLI::App* set_cmd = app.add_subcommand("set", "Change a body's integrator or parameters");
   set_cmd->add_option("--body", body, "Body id")->capture_default_str();
   auto* integrator_opt = set_cmd->add_option("--integrator", integrator, "Integrator name");
@@ -178,6 +179,8 @@ int main(int argc, char** argv) {
   auto* damping_opt =
       set_cmd->add_option("--damping", damping, "Spring damping (cloth) or the model's (solid)");
   auto* friction_opt = set_cmd->add_option("--friction", friction, "Coulomb friction (solid)");
+  auto* max_step_opt = set_cmd->add_option(
+      "--max-step", max_step, "The body's longest step, s (substeps of the scene's; 0: none)");
   scene_options(set_cmd, common);
 
   std::vector<std::uint32_t> pins, unpins;
@@ -324,6 +327,7 @@ int main(int argc, char** argv) {
       if (*strain_opt) parameters.set_max_strain(max_strain);
       if (*damping_opt) parameters.set_damping(damping);
       if (*friction_opt) parameters.set_friction(friction);
+      if (*max_step_opt) parameters.set_max_step(max_step);
       return set(common, parameters);
     }
     if (pin_cmd->parsed()) return pin(common, body, pins, unpins);

@@ -146,11 +146,14 @@ int stats(const Common& common) {
         static_cast<unsigned long long>(s.unrecoverable_steps()),
         static_cast<unsigned long long>(s.over_budget_steps()));
     // one line per body: "  body 0 cloth symplectic_euler: 2 substeps, 0 rescued, 0 over budget"
+    // and ", max step 0.00025 s" when it has its own
     for (const v1::BodyStats& body : s.body_stats()) {
-      std::printf("  body %u %s %s: %u substeps, %llu rescued, %llu over budget\n", body.body_id(),
+      std::printf("  body %u %s %s: %u substeps, %llu rescued, %llu over budget", body.body_id(),
                   body.kind().c_str(), body.integrator().c_str(), body.substeps(),
                   static_cast<unsigned long long>(body.rescued_steps()),
                   static_cast<unsigned long long>(body.over_budget_steps()));
+      if (body.max_step() > 0) std::printf(", max step %g s", body.max_step());
+      std::printf("\n");
     }
     // one line per system: "cloth ms/step: integration 0.412, stretch_limit 0.101, ..."
     std::string system;

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "net/requests.hpp"
+#include "scene/body_step_reader.hpp"
 #include "scene/scene_loader.hpp"
 
 namespace felt::net {
@@ -37,7 +39,7 @@ std::string check_parameters(const v1::SetBodyParameters& set, const BodyInfo& b
   if (!cloth && (set.has_drag() || set.has_structural_stiffness() || set.has_shear_stiffness() ||
                  set.has_bend_stiffness() || set.has_max_strain())) {
     return "body " + std::to_string(set.body_id()) +
-           " is a solid: it takes damping, friction and integrator only";
+           " is a solid: it takes damping, friction, integrator and max_step only";
   }
   if (cloth && set.has_friction()) return "friction applies to solids only";
   if (set.has_integrator()) {
@@ -69,7 +71,17 @@ std::string check_parameters(const v1::SetBodyParameters& set, const BodyInfo& b
   if (set.has_friction() && !in_range(set.friction(), 0, kMaxFriction)) {
     return range("friction", 0, kMaxFriction);
   }
+  if (set.has_max_step() && set.max_step() != 0 &&
+      !in_range(set.max_step(), scene_json::kMinBodyStep, scene_json::kMaxBodyStep)) {
+    return range("max_step", scene_json::kMinBodyStep, scene_json::kMaxBodyStep) +
+           " s, or 0 for the scene's step";
+  }
   return {};
+}
+
+/// The max_step a body takes from `set`: 0 asks for none.
+Real own_max_step(const v1::SetBodyParameters& set) {
+  return set.max_step() > 0 ? set.max_step() : std::numeric_limits<Real>::infinity();
 }
 
 void change_cloth(const v1::SetBodyParameters& set, ClothBody& body) {
@@ -89,6 +101,7 @@ void change_cloth(const v1::SetBodyParameters& set, ClothBody& body) {
   }
   body.set_params(params);
   if (set.has_integrator()) body.set_integrator(make_integrator(set.integrator()));
+  if (set.has_max_step()) body.set_max_step(own_max_step(set));
 }
 
 void change_solid(const v1::SetBodyParameters& set, SolidBody& body) {
@@ -99,6 +112,7 @@ void change_solid(const v1::SetBodyParameters& set, SolidBody& body) {
     material.fem.damping = set.damping();
   }
   body.set_material(material);
+  if (set.has_max_step()) body.set_max_step(own_max_step(set));
   if (set.has_integrator()) {
     body.set_integrator(
         set.integrator() == kTimeCorrectedVerlet ? nullptr : make_integrator(set.integrator()));

@@ -130,6 +130,7 @@ void handle_get_stats(Session& session, std::uint64_t id) {
         entry.set_rescued_steps(body.rescued_steps);
         entry.set_max_compression(body.max_compression);
         entry.set_over_budget_steps(body.over_budget_steps);
+        entry.set_max_step(body.max_step);
       }
       add_stage_times("cloth", ClothSystem::kStages, runner.cloth_profile, out);
       add_stage_times("solids", SolidSystem::kStages, runner.solid_profile, out);

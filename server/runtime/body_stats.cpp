@@ -1,6 +1,16 @@
 #include "runtime/body_stats.hpp"
 
+#include <cmath>
+
 namespace felt {
+namespace {
+
+/// A body's own max_step as GetStats tells it: 0 for none.
+Real own_step(Real max_step) {
+  return std::isfinite(max_step) ? max_step : 0;
+}
+
+}  // namespace
 
 std::vector<BodyStats> body_stats(const World& world) {
   std::vector<BodyStats> out;
@@ -11,7 +21,7 @@ std::vector<BodyStats> body_stats(const World& world) {
       out.push_back({id, "cloth", std::string(cloth.integrator().name()), cloth.max_strain(), 1,
                      cloth.kinetic_energy(), world.step_counts(id).substeps,
                      world.substeps(id).rescued_steps(), cloth.max_compression(),
-                     world.step_counts(id).over_budget_steps});
+                     world.step_counts(id).over_budget_steps, own_step(cloth.max_step())});
     } else if (ref.kind == BodyRef::Kind::kSolid) {
       const SolidBody& solid = world.solids().bodies()[ref.index];
       const Integrator* integrator = solid.integrator();
@@ -21,7 +31,7 @@ std::vector<BodyStats> body_stats(const World& world) {
       out.push_back({id, "solid", integrator ? std::string(integrator->name()) : update, 0,
                      solid.volume() / solid.rest_volume(), solid.kinetic_energy(),
                      world.step_counts(id).substeps, world.substeps(id).rescued_steps(), 0,
-                     world.step_counts(id).over_budget_steps});
+                     world.step_counts(id).over_budget_steps, own_step(solid.max_step())});
     }
   }
   return out;

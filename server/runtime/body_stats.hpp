@@ -20,6 +20,7 @@ struct BodyStats {
   std::uint64_t rescued_steps = 0;
   Real max_compression = 0;             ///< cloth: ClothBody::max_compression
   std::uint64_t over_budget_steps = 0;  ///< World::step_counts
+  Real max_step = 0;                    ///< s, its own longest step; 0 when it has none
 };
 
 /// Every cloth and solid of `world`, in id order.

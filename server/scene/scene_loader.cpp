@@ -11,6 +11,7 @@
 
 #include "core/cloth/cloth_grid.hpp"
 #include "core/cloth/mesh_cloth.hpp"
+#include "scene/body_step_reader.hpp"
 #include "scene/cloth_integrator_reader.hpp"
 #include "scene/haptics_reader.hpp"
 #include "scene/health_reader.hpp"
@@ -272,6 +273,7 @@ ClothBody read_cloth(const ObjectReader& body, std::size_t index, const SceneLoa
   read_anchors(body, cloth);
   read_constraint_forces(body, cloth);
   check_stable_step(body, cloth, time_step, health);
+  cloth.set_max_step(read_max_step(body, time_step, health));
   return cloth;
 }
 
@@ -315,7 +317,7 @@ SceneBody read_body(const json& entry, const std::string& path, std::size_t inde
     const ObjectReader body(entry, path,
                             {"name", "type", "grid", "mesh", "mass", "springs", "drag",
                              "stretch_limit", "thickness", "self_collision", "wind", "integrator",
-                             "pin", "constraints", "anchors", "constraint_forces"});
+                             "pin", "constraints", "anchors", "constraint_forces", "max_step"});
     return read_cloth(body, index, options, time_step, health, particles_left);
   }
   if (type && *type == "solid") {
@@ -323,8 +325,8 @@ SceneBody read_body(const json& entry, const std::string& path, std::size_t inde
         entry, path,
         {"name", "type", "lattice", "mesh", "tetgen", "torus", "sphere", "transform", "model",
          "node_mass", "friction", "self_collision", "crease_angle", "mass_spring", "shape_matching",
-         "fem", "pin", "integrator"});
-    return read_solid(body, index, options.asset_root, time_step, particles_left);
+         "fem", "pin", "integrator", "max_step"});
+    return read_solid(body, index, options.asset_root, time_step, health, particles_left);
   }
   fail(child(path, "type"), "must be \"cloth\" or \"solid\"");
 }

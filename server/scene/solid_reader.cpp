@@ -9,6 +9,7 @@
 #include "core/geometry/procedural_surfaces.hpp"
 #include "core/solids/tet_lattice.hpp"
 #include "core/solids/voxel_lattice.hpp"
+#include "scene/body_step_reader.hpp"
 #include "scene/obj_reader.hpp"
 #include "scene/tetgen_reader.hpp"
 
@@ -180,7 +181,7 @@ SolidMaterial read_material(const ObjectReader& body) {
 
 SolidBody read_solid(const ObjectReader& body, std::size_t index,
                      const std::filesystem::path& asset_root, Real time_step,
-                     std::size_t& particles_left) {
+                     const HealthSettings& health, std::size_t& particles_left) {
   SolidShape shape = read_shape(body, asset_root, particles_left);
   const Transform transform = read_transform(body);
   for (Vec3& x : shape.lattice.nodes) x = transform.apply(x);
@@ -219,6 +220,7 @@ SolidBody read_solid(const ObjectReader& body, std::size_t index,
                           std::to_string(solid.stable_time_step()) +
                           " s; lower the stiffness or raise node_mass");
   }
+  solid.set_max_step(read_max_step(body, time_step, health));
   return solid;
 }
 

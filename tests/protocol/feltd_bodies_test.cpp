@@ -2,6 +2,7 @@
 // encodings and subscriptions.
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <thread>
@@ -319,6 +320,50 @@ TEST_F(FeltdTest, QuantizedDeltaFramesShowWhatFloatFramesShow) {
   EXPECT_TRUE(any_delta);
   EXPECT_LT(delta_bytes, 0.4 * float_bytes);
   expect_error([&] { deltas->ack_frame(100000); }, v1::ERROR_CODE_BAD_REQUEST);
+}
+
+// Issue 32: a body's own time step, chosen while it runs: the cloth takes the substeps its
+// max_step asks for and GetStats tells both; 0 gives the scene's step back; a step outside
+// [1e-6, 1] s is refused with the range, and the body keeps what it had.
+TEST_F(FeltdTest, ABodysOwnTimeStepIsChosenWhileItRuns) {
+  auto client = greeted("stepper");
+  v1::CreateScene create;
+  create.set_time_step(0.002);
+  client->create_scene(create);
+  const v1::BodyInfo cloth = client->add_body(small_cloth_json(0)).body();
+  // the statistics come per window of steps: wait for one that shows the change
+  const auto stats_of_cloth = [&](double max_step, std::uint32_t substeps) {
+    v1::BodyStats last;
+    const auto deadline = std::chrono::steady_clock::now() + scaled(10s);
+    while (std::chrono::steady_clock::now() < deadline) {
+      const v1::Stats stats = client->stats();
+      for (const v1::BodyStats& body : stats.scene().body_stats()) {
+        if (body.body_id() == cloth.body_id()) last = body;
+      }
+      if (last.max_step() == max_step && last.substeps() == substeps) break;
+      std::this_thread::sleep_for(20ms);
+    }
+    return last;
+  };
+  EXPECT_EQ(stats_of_cloth(0, 1).substeps(), 1u);  // its stable step is longer than 2 ms
+  v1::SetBodyParameters set;
+  set.set_body_id(cloth.body_id());
+  set.set_max_step(0.0005);
+  EXPECT_EQ(client->set_body_parameters(set).body_id(), cloth.body_id());
+  v1::BodyStats stepped = stats_of_cloth(0.0005, 4);
+  EXPECT_EQ(stepped.max_step(), 0.0005);
+  EXPECT_EQ(stepped.substeps(), 4u);  // 2 ms in steps of at most 0.5 ms
+  for (const double bad : {-1.0, 1e-7, 2.0, std::nan("")}) {
+    set.set_max_step(bad);
+    expect_error([&] { client->set_body_parameters(set); }, v1::ERROR_CODE_BAD_REQUEST,
+                 "max_step must be a finite number in [1e-06, 1]");
+  }
+  EXPECT_EQ(stats_of_cloth(0.0005, 4).substeps(), 4u);
+  set.set_max_step(0);
+  client->set_body_parameters(set);
+  const v1::BodyStats back = stats_of_cloth(0, 1);
+  EXPECT_EQ(back.max_step(), 0);
+  EXPECT_EQ(back.substeps(), 1u);
 }
 
 TEST_F(FeltdTest, SubscriptionsChooseBodiesAndEndOnUnsubscribe) {

@@ -279,6 +279,7 @@ async function pollStats() {
       if (shownIntegratorOf !== body.bodyId) {
         shownIntegratorOf = body.bodyId;
         $("integrator").value = body.integrator;
+        $("max-step").value = body.maxStep > 0 ? String(body.maxStep * 1000) : "";
       }
     }
   }
@@ -327,6 +328,9 @@ function wirePanel() {
     const current = felt.stats?.scene?.bodyStats.find((b) => b.bodyId === value.bodyId)?.integrator;
     if (integrator && integrator !== current) value.integrator = integrator;
     const number = (id) => ($(id).value === "" ? undefined : Number($(id).value));
+    // the body's longest step, in substeps of the scene's: ms here, s on the wire
+    const step = number("max-step");
+    if (step !== undefined) value.maxStep = step / 1000;
     if (body.kind === "cloth") {
       value.structuralStiffness = number("structural");
       value.shearStiffness = number("shear");

@@ -29,6 +29,11 @@ void ClothBody::set_integrator(std::unique_ptr<Integrator> integrator) {
   integrator_ = std::move(integrator);
 }
 
+void ClothBody::set_max_step(Real max_step) {
+  FELT_CHECK(max_step > 0);
+  max_step_ = max_step;
+}
+
 void ClothBody::pin(std::uint32_t p) {
   FELT_CHECK(p < inv_mass_.size());
   inv_mass_[p] = 0;

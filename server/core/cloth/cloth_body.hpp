@@ -2,6 +2,7 @@
 // A simulated cloth: an immutable ClothModel plus its state, parameters and integrator.
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -69,6 +70,11 @@ class ClothBody final : public DynamicSystem {
   Integrator& integrator() { return *integrator_; }
   const Integrator& integrator() const { return *integrator_; }
   void set_integrator(std::unique_ptr<Integrator> integrator);
+
+  /// The longest step this body takes, s: a longer world step is taken in equal substeps
+  /// (the user's trade of speed for accuracy; a stable step may ask for more). Infinite: none.
+  Real max_step() const { return max_step_; }
+  void set_max_step(Real max_step);
 
   /// Fixes particle p where it is (inverse mass 0, velocity 0).
   void pin(std::uint32_t p);
@@ -152,6 +158,7 @@ class ClothBody final : public DynamicSystem {
   SpringColouring spring_colouring_;  ///< of model_'s springs, for distance_constraints
   ClothParams params_;
   std::unique_ptr<Integrator> integrator_;
+  Real max_step_ = std::numeric_limits<Real>::infinity();
   ParticleState state_;
   std::vector<Real> inv_mass_;
   std::vector<ParticleConstraint> constraints_;

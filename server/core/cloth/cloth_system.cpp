@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/math/check.hpp"
+#include "core/step/substeps_for.hpp"
 
 namespace felt {
 namespace {
@@ -88,12 +89,12 @@ const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider
     start.speed.reachable = std::sqrt(2 * start.energy / health_[b].lightest);
     StickySubsteps& sticky = health_[b].substeps;
     const std::int64_t budget = settings_.health.step_budget;
-    const std::int64_t stable = stable_substeps(b, h);
+    const std::int64_t fewest = fewest_substeps(b, h);
     spent_ = 0;
     capped_ = false;
     const RescueOutcome outcome = step_with_rescue(
         static_cast<int>(
-            std::min(budget, std::max<std::int64_t>(stable, sticky.start(relax_steps)))),
+            std::min(budget, std::max<std::int64_t>(fewest, sticky.start(relax_steps)))),
         settings_.max_doublings,
         [&](int substeps) { return attempt(b, t, h, substeps, colliders, start, yield_point); },
         [&] {
@@ -106,7 +107,7 @@ const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider
     sticky.record(outcome);
     BodyStepCounts& counts = health_[b].counts;
     counts.substeps = outcome.substeps;
-    if (stable > budget || outcome.out_of_budget || capped_) {
+    if (fewest > budget || outcome.out_of_budget || capped_) {
       ++counts.over_budget_steps;
       stats_.over_budget.push_back(static_cast<std::uint32_t>(b));
     }
@@ -134,15 +135,11 @@ const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider
   return stats_;
 }
 
-std::int64_t ClothSystem::stable_substeps(std::size_t index, Real h) {
-  if (!settings_.health.auto_substeps) return 1;
-  const Real limit = health_[index].stable_step.of(bodies_[index]);
-  // no step is stable: more than any budget
-  if (!(limit > 0)) return std::numeric_limits<std::int64_t>::max();
-  // the tolerance keeps a step of exactly k limits from rounding up to k + 1 substeps
-  const Real substeps = std::ceil(h / limit - 1e-9);
-  return substeps >= Real{1e18} ? std::numeric_limits<std::int64_t>::max()
-                                : std::max<std::int64_t>(1, static_cast<std::int64_t>(substeps));
+std::int64_t ClothSystem::fewest_substeps(std::size_t index, Real h) {
+  const ClothBody& body = bodies_[index];
+  const std::int64_t asked = substeps_for(h, body.max_step());
+  if (!settings_.health.auto_substeps) return asked;
+  return std::max(asked, substeps_for(h, health_[index].stable_step.of(body)));
 }
 
 bool ClothSystem::attempt(std::size_t index, Real t, Real h, int substeps,

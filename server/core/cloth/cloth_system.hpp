@@ -109,9 +109,10 @@ class ClothSystem {
     bool first = true;  ///< the attempt is the first of the step, not a retry
   };
 
-  /// The substeps cloth `index`'s stable step asks for in a step of length h (1 without
-  /// automatic substeps or a limit), possibly beyond the budget.
-  std::int64_t stable_substeps(std::size_t index, Real h);
+  /// The fewest substeps cloth `index` takes in a step of length h: its own max_step's, and
+  /// its stable step's unless automatic substeps are off; beyond any budget when no step is
+  /// stable.
+  std::int64_t fewest_substeps(std::size_t index, Real h);
   /// Steps cloth `index` over [t, t + h] in `substeps` equal parts, each integrator call
   /// within its share of what the step budget has left; false when unhealthy.
   /// `energy` holds the body's kinetic plus elastic energy at the start, and at the end when

@@ -215,6 +215,11 @@ void SolidBody::set_integrator(std::unique_ptr<Integrator> integrator) {
   integrated_motion_.clear();
 }
 
+void SolidBody::set_max_step(Real max_step) {
+  FELT_CHECK(max_step > 0);
+  max_step_ = max_step;
+}
+
 void SolidBody::restore_step_state(const StepState& state) {
   x_ = state.x;
   x_prev_ = state.x_prev;

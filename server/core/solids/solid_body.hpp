@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -107,6 +108,12 @@ class SolidBody {
   const Integrator* integrator() const { return integrator_.get(); }
   /// `integrator` must apply to the model (solid_integrator_refusal); null: kTimeCorrectedVerlet.
   void set_integrator(std::unique_ptr<Integrator> integrator);
+
+  /// The longest step this body takes (the solids step together: the shortest
+  /// of all theirs), s: a longer world step is taken in equal substeps
+  /// (the user's trade of speed for accuracy; a stable step may ask for more). Infinite: none.
+  Real max_step() const { return max_step_; }
+  void set_max_step(Real max_step);
 
   std::size_t node_count() const { return x_.size(); }
   std::vector<Vec3>& positions() { return x_; }
@@ -229,6 +236,7 @@ class SolidBody {
   Real previous_step_ = 0;  ///< length of the last step, 0 before the first
   std::unique_ptr<ModelState> model_state_;
   std::unique_ptr<Integrator> integrator_;
+  Real max_step_ = std::numeric_limits<Real>::infinity();
   ParticleState integrated_;  ///< the integrator's state; x and v live here during a step
   std::vector<Vec3> integrated_motion_;  ///< per node, how far the integrator moved it
   std::shared_ptr<const EmbeddedSurface> embedded_;

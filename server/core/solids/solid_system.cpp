@@ -7,6 +7,7 @@
 #include "core/solids/solid_collider_contact.hpp"
 #include "core/step/energy_balance.hpp"
 #include "core/step/substep_rescue.hpp"
+#include "core/step/substeps_for.hpp"
 
 namespace felt {
 namespace {
@@ -65,12 +66,13 @@ const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
   stats_ = SolidStepStats{};
   if (bodies_.empty()) return stats_;
   Real longest = settings_.max_step;
-  for (const SolidBody& body : bodies_) longest = std::min(longest, body.stable_time_step());
+  for (const SolidBody& body : bodies_) {
+    longest = std::min({longest, body.stable_time_step(), body.max_step()});
+  }
   const int budget = settings_.health.step_budget;
-  // the tolerance keeps a step of exactly k·max_step from rounding up to k + 1 substeps; past
-  // the budget any count stands for all (a stiff grab can ask for billions)
-  const Real wanted = std::ceil(h / longest - 1e-9);
-  const int stable = wanted > budget ? budget + 1 : std::max(1, static_cast<int>(wanted));
+  // past the budget any count stands for all (a stiff grab can ask for billions)
+  const std::int64_t wanted = substeps_for(h, longest);
+  const int stable = wanted > budget ? budget + 1 : static_cast<int>(wanted);
   const int substeps =
       std::min(budget, std::max(stable, sticky_.start(static_cast<std::int64_t>(
                                             std::ceil(settings_.health.relax_after / h)))));

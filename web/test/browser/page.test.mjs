@@ -157,6 +157,20 @@ test("the panel's integrator changes the body's integrator", async () => {
   await page.close();
 });
 
+test("the panel's time step makes the body take substeps of the scene's step", async () => {
+  const { page, errors } = await openPage(browser, `${server.url}?scene=default`);
+  await page.selectOption("#body", "0");
+  await until(page, () => window.felt.stats?.scene?.bodyStats?.length > 0);
+  // the default scene steps 1 ms: a body step of 0.25 ms is 4 substeps of it
+  await page.fill("#max-step", "0.25");
+  await page.click("#apply-body");
+  await until(page, () => window.felt.stats.scene.bodyStats[0].maxStep === 0.00025 &&
+    window.felt.stats.scene.bodyStats[0].substeps === 4);
+  await until(page, () => document.getElementById("body-state").textContent.includes("× 4"));
+  assert.deepEqual(errors, []);
+  await page.close();
+});
+
 test("cloth_on_ball shows the ball and the floor", async () => {
   const { page, errors } = await openPage(browser, `${server.url}?scene=cloth_on_ball`);
   const colliders = await page.evaluate(() => window.felt.colliders());
