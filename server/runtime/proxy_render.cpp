@@ -11,16 +11,19 @@ ProxyOutput render_proxy(HapticProxy& proxy, const HapticFrame& frame, SteadyClo
                                  reactions, local);
   LocalModelFeed* feed = proxy.local_model();
   if (feed && feed->due(frame.to->version, now)) {
-    // the newer snapshot, which the render reaches one interval after it was published
-    // (HapticFrame), moving at the velocities of the simulation at the scene's pace: not over
-    // the wall time between the two publications, which a loaded machine makes in bursts
-    // (velocities 50 times too large, and a client's extrapolation far off)
+    // the newer snapshot, the scene as it was when published, moving at the velocities of the
+    // simulation at the scene's pace: not over the wall time between the two publications,
+    // which a loaded machine makes in bursts (velocities 50 times too large, and a client's
+    // extrapolation far off). Not when the server's own render reaches it, one interval later
+    // (HapticFrame): after a stall of the physics thread that interval is the stall, and a
+    // model dated that far ahead was moved back by its velocities on the client (up to 0.25 s:
+    // a swinging curtain centimetres behind where it was, through the client's proxy).
     const Real stepped = frame.to->sim_time - frame.from->sim_time;
     const Vec3& centre = local ? local->proxy : out.contact.proxy;
     out.local_model = LocalModelCut{
         cut_local_model(frame.surface_at(1), time_scale > 0 ? stepped / time_scale : 0, centre,
                         feed->request().radius, kMaxLocalModelTriangles),
-        frame.to->step, frame.published + frame.interval};
+        frame.to->step, frame.published};
     LocalModel& model = out.local_model->model;
     model.push = out.local_push;
     set_local_model_stiffness(model, *frame.to, centre, local, out.pushed_body,

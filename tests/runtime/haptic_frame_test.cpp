@@ -1,7 +1,7 @@
 // The haptic frames the physics thread publishes, as a proxy that updates rarely sees them:
 // the bound on the motion between any two frames of a chain, the snapshots a kept surface
 // holds on to, a new proxy's first contact, and a cloth that passes a still device between two
-// of the proxy's updates.
+// of the proxy's updates; and when a local model cut from a frame shows the surface.
 
 #include <chrono>
 #include <memory>
@@ -13,6 +13,7 @@
 #include "core/haptics/god_object.hpp"
 #include "runtime/haptic_frame.hpp"
 #include "runtime/haptic_proxy.hpp"
+#include "runtime/proxy_render.hpp"
 #include "runtime/reaction_accumulator.hpp"
 
 namespace felt {
@@ -205,6 +206,37 @@ TEST(HapticFrame, AProxyUpdatedEveryFifthFrameIsCarriedByACrossingCloth) {
     EXPECT_TRUE(c.in_contact) << "step " << step;
     EXPECT_LT(c.force.z(), 0) << "step " << step;
   }
+}
+
+// A local model shows its snapshot as the scene was when it was published, whatever the
+// server's own render does with it. Dated one interval later (when that render reaches it), a
+// model cut just after a 300 ms stall of the physics thread claimed to show the surface 300 ms
+// ahead: the client moved it back by its velocities, and a swinging curtain came back through
+// the client's proxy (felt touch --local-model on a loaded machine).
+TEST(HapticFrame, ALocalModelAfterAStallShowsItsSnapshotWhenPublished) {
+  const auto surface = square_cloth();
+  Publisher publisher;
+  auto still = std::const_pointer_cast<SceneSnapshot>(snapshot_at(1, 0, surface));
+  still->sim_time = 0.001;
+  publisher.publish(still);
+  publisher.now += std::chrono::milliseconds(300);  // the physics thread stalls
+  auto moved = std::const_pointer_cast<SceneSnapshot>(snapshot_at(2, 0.001, surface));
+  moved->sim_time = 0.002;
+  const HapticFrame& frame = publisher.publish(moved);
+  ASSERT_EQ(frame.interval, std::chrono::milliseconds(310));
+
+  HapticProxy proxy(1, ProxySettings{});
+  proxy.enable_local_model({.radius = 0.2, .rate_hz = 0});
+  ReactionAccumulator reactions;
+  const SteadyClock::time_point now = frame.published + std::chrono::milliseconds(1);
+  const ProxyOutput out =
+      render_proxy(proxy, frame, now, 1, Vec3(0, 0, 0.1), 0, reactions, nullptr);
+  ASSERT_TRUE(out.local_model);
+  EXPECT_EQ(now - out.local_model->rendered_at, std::chrono::milliseconds(1));
+  // the positions are the newer snapshot's, moving 1 mm per millisecond of the scene
+  const LocalModelBody& body = out.local_model->model.bodies.at(0);
+  EXPECT_DOUBLE_EQ(body.positions.at(0).z(), 0.001);
+  EXPECT_DOUBLE_EQ(body.velocities.at(0).z(), 1);
 }
 
 }  // namespace
