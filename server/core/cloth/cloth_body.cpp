@@ -229,13 +229,16 @@ Real ClothBody::gravitational_energy() const {
   return energy;
 }
 
-Real ClothBody::elastic_energy() const {
+Real ClothBody::elastic_energy(Real constraint_substep) const {
+  const Real h2 = constraint_substep * constraint_substep;
   Real energy = 0;
   for (const Spring& s : model_->springs) {
     const SpringParams& sp = params_.spring(s.kind);
     if (!sp.enabled) continue;
     const Real stretch = (state_.x[s.i] - state_.x[s.j]).norm() - s.rest_length;
-    energy += 0.5 * sp.stiffness * stretch * stretch;
+    const Real stiffness =
+        sp.stiffness / (1 + sp.stiffness * (inv_mass_[s.i] + inv_mass_[s.j]) * h2);
+    energy += 0.5 * stiffness * stretch * stretch;
   }
   for (const Anchor& a : anchors_) {
     energy += 0.5 * a.stiffness * (a.target - state_.x[a.particle]).squaredNorm();

@@ -110,8 +110,19 @@ class ClothBody final : public DynamicSystem {
 
   /// Σ ½ m v² over all particles, J.
   Real kinetic_energy() const;
-  /// Σ ½ k (|l| − r)² over the enabled springs and ½ k |target − x|² over the anchors, J.
-  Real elastic_energy() const;
+  /// Σ ½ k (|l| − r)² over the enabled springs and ½ k |target − x|² over the anchors, J. With
+  /// a `constraint_substep` h > 0 (springs projected as XPBD constraints over substeps that
+  /// long), a spring counts at the stiffness its projection pushes with, k / (1 + k w h²), w
+  /// the inverse masses of its ends (XPBD eq. 18: Δλ = −k h² C / (k h² w + 1) is a force
+  /// k C / (1 + k w h²)): a spring stiffer than its particles can follow in one substep acts
+  /// with about their m / h², and a violation a Gauss–Seidel pass leaves holds that much.
+  Real elastic_energy(Real constraint_substep = 0) const;
+  /// The elastic energy at the stiffness the body's integrator applies its springs with in
+  /// steps of length h (the nominal one unless it projects them as constraints): what the
+  /// health check counts.
+  Real elastic_energy_in_steps_of(Real h) const {
+    return elastic_energy(integrator_->constraint_substep(h));
+  }
   /// −Σ m g·x over all particles, J: zero at the origin, so only its changes mean anything.
   Real gravitational_energy() const;
   const std::vector<Vec3>& external_forces() const { return external_force_; }

@@ -45,8 +45,8 @@ void ClothSystem::remove_body(std::uint32_t index) {
   energy_valid_ = false;
 }
 
-Real ClothSystem::mechanical_energy(const ClothBody& body) {
-  return body.kinetic_energy() + body.elastic_energy() + body.gravitational_energy();
+Real ClothSystem::mechanical_energy(const ClothBody& body, Real h) {
+  return body.kinetic_energy() + body.elastic_energy_in_steps_of(h) + body.gravitational_energy();
 }
 
 Real ClothSystem::energy_scale(std::size_t index, Real kinetic_elastic) const {
@@ -65,8 +65,8 @@ const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider
   if (!energy_valid_) {
     energy_.resize(bodies_.size());
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
-      energy_[b] = bodies_[b].kinetic_energy() + bodies_[b].elastic_energy();
-      health_[b].balance.reset(mechanical_energy(bodies_[b]));
+      energy_[b] = bodies_[b].kinetic_energy() + bodies_[b].elastic_energy_in_steps_of(h);
+      health_[b].balance.reset(mechanical_energy(bodies_[b], h));
     }
   }
   const auto relax_steps = static_cast<std::int64_t>(std::ceil(settings_.health.relax_after / h));
@@ -115,7 +115,7 @@ const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider
       stats_.rescued = true;
       stats_.rescued_bodies.push_back(static_cast<std::uint32_t>(b));
       // the growth before the rescue cannot be undone: the balance starts over from here
-      health_[b].balance.reset(mechanical_energy(body));
+      health_[b].balance.reset(mechanical_energy(body, h));
     } else if (outcome.ok) {
       // healthy() measured the state the step left
       health_[b].balance.accept(energy_[b] + gravitational_, work_, energy_scale(b, energy_[b]),
@@ -124,8 +124,8 @@ const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider
       body.state().x = backup_.x;
       for (Vec3& v : body.state().v) v.setZero();
       body.integrator().reset();
-      energy_[b] = body.elastic_energy();
-      health_[b].balance.reset(mechanical_energy(body));
+      energy_[b] = body.elastic_energy_in_steps_of(h);
+      health_[b].balance.reset(mechanical_energy(body, h));
       stats_.unrecoverable.push_back(static_cast<std::uint32_t>(b));
     }
     stats_.substeps = std::max(stats_.substeps, outcome.substeps);
@@ -208,7 +208,7 @@ bool ClothSystem::healthy(std::size_t index, Real t, Real h, StepStart& start) {
     applied_work += 0.5 * (applied_before_[p] + applied_after_[p]).dot(displacement);
   }
   const Real work = std::max({work_by_displacement, work_by_velocity, Real{0}});
-  const Real energy_after = body.kinetic_energy() + body.elastic_energy();
+  const Real energy_after = body.kinetic_energy() + body.elastic_energy_in_steps_of(h);
   const Real growth = settings_.max_energy_growth;
   if (energy_after > growth * (start.energy + work) + kEnergyFloor) return false;
   // slow growth, judged on the first attempt only: a window cannot judge a retried step, and

@@ -123,8 +123,8 @@ class ClothSystem {
   /// Cloth `index`'s kinetic and elastic energy (`kinetic_elastic`, J) plus its weight times
   /// its size: what the energy balance's tolerance is a fraction of.
   Real energy_scale(std::size_t index, Real kinetic_elastic) const;
-  /// Kinetic, elastic and gravitational energy.
-  static Real mechanical_energy(const ClothBody& body);
+  /// Kinetic, elastic (ClothBody::elastic_energy_in_steps_of) and gravitational energy.
+  static Real mechanical_energy(const ClothBody& body, Real h);
 
   ClothStepSettings settings_;
   std::vector<ClothBody> bodies_;

@@ -40,6 +40,10 @@ class Integrator {
   /// The last call stopped at a cap before it was done: adaptive_rk accepted an internal step
   /// its error control rejected, implicit Euler's conjugate gradients stopped unconverged.
   virtual bool last_step_capped() const { return false; }
+
+  /// For an integrator that projects the springs as constraints (xpbd): how long the substeps
+  /// it projects them over are when a step is h; 0 for the others, which apply them as forces.
+  virtual Real constraint_substep(Real /*h*/) const { return 0; }
 };
 
 /// The integrator called `name`, or nullptr when there is none.

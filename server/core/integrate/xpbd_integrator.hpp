@@ -30,6 +30,7 @@ class XpbdIntegrator final : public Integrator {
 
   std::string_view name() const override { return "xpbd"; }
   void step(const DynamicSystem& system, ParticleState& state, Real t, Real h) override;
+  Real constraint_substep(Real h) const override { return h / substeps_; }
 
   int substeps() const { return substeps_; }
 
