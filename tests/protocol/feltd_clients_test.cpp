@@ -219,7 +219,8 @@ TEST_F(FeltdTest, ASlowReaderSkipsFramesButNeverReplies) {
   message.mutable_hello()->set_client_name("slow");
   slow.send(message);
   // a still 100 x 100 cloth published 100 times a second: 12 MB/s of 120 kB frames, far more
-  // than the socket buffers on both sides hold in the two seconds the client does not read
+  // than the socket buffers on both sides hold in the two seconds (times the sanitizer's
+  // slowdown) the client does not read
   message.mutable_load_scene()->set_json(R"({"time_step": 0.01, "gravity": [0, 0, 0],
       "bodies": [{"type": "cloth", "grid": {"nx": 100, "ny": 100}}]})");
   slow.send(message);
@@ -235,7 +236,7 @@ TEST_F(FeltdTest, ASlowReaderSkipsFramesButNeverReplies) {
   for (int i = 0; i < 40; ++i) {
     message.mutable_get_stats();
     ids.push_back(slow.send(message));
-    std::this_thread::sleep_for(50ms);
+    std::this_thread::sleep_for(scaled(50ms));
     EXPECT_FALSE(fast->proxy_update(0, {5, 5, 5}).in_contact());
   }
   std::size_t replies = 0;
