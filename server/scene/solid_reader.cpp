@@ -87,6 +87,15 @@ SolidShape read_shape(const ObjectReader& body, const std::filesystem::path& ass
     if (!surface) fail(mesh.path_of("file"), surface.error());
     take_particles(mesh.path_of("file"), surface->positions.size(), particles_left);
     take_lattice(mesh.path_of("resolution"), resolution, particles_left);
+    // the lattice's cells are the surface's extent over the resolution: none, no cells
+    // (found by scripts/fuzz obj_reader: the voxelizer's check stopped the process)
+    Eigen::AlignedBox<Real, 3> bounds;
+    for (const Vec3& p : surface->positions) bounds.extend(p);
+    if (!(bounds.sizes().maxCoeff() > 0)) {
+      fail(mesh.path_of("file"),
+           "its vertices all lie at one point: a solid needs a surface "
+           "that encloses something");
+    }
     return embedded(*surface, resolution);
   }
   if (shape == "tetgen") {
