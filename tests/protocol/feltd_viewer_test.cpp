@@ -48,8 +48,9 @@ TEST_F(FeltdTest, CollidersAreDescribedWithTheirShapes) {
   EXPECT_EQ(added->bodies(0).collider().center().x(), 1.0);
 }
 
-/// The next frame whose proxies hold one of client `name`, or nothing within 5 s, while
-/// `touch` keeps that client's proxy pressed into the curtain.
+/// The next frame whose proxies hold one of client `name` in contact, or nothing within 5 s,
+/// while `touch` keeps that client's proxy pressed into the curtain. In contact: on a loaded
+/// machine the first frame the viewer got showed the proxy free, with no force (CI, once).
 template <class Touch>
 std::optional<v1::ProxyPresence> presence_of(Client& viewer, const std::string& name, Touch touch) {
   const auto deadline = std::chrono::steady_clock::now() + scaled(5s);
@@ -58,7 +59,7 @@ std::optional<v1::ProxyPresence> presence_of(Client& viewer, const std::string& 
     const auto frame = viewer.next_frame(100ms);
     if (!frame) continue;
     for (const v1::ProxyPresence& proxy : frame->proxies()) {
-      if (proxy.client_name() == name) return proxy;
+      if (proxy.client_name() == name && proxy.in_contact()) return proxy;
     }
   }
   return std::nullopt;
@@ -74,7 +75,6 @@ TEST_F(FeltdTest, FramesShowEveryClientsProxiesByName) {
   ASSERT_TRUE(seen);
   EXPECT_EQ(seen->proxy_id(), 7u);
   EXPECT_FALSE(seen->own());
-  EXPECT_TRUE(seen->in_contact());
   EXPECT_NEAR(seen->force().z(), 4.0, 1.0);       // the README's touch: ~4 N along +z
   EXPECT_NEAR(seen->position().z(), 0.02, 0.01);  // the god-object rests on the curtain
   EXPECT_GT(seen->radius(), 0.0);
