@@ -131,10 +131,7 @@ TEST_F(FeltdTest, AForceUpdateEchoesTheClientsTimeAndStampsTheServers) {
   EXPECT_LE(second.server_receive_ns(), second.server_send_ns());
 }
 
-class FeltdLiveClothTest : public FeltdTest {
- protected:
-  std::vector<std::string> extra_args() const override { return {"--background-nice", "0"}; }
-};
+using FeltdLiveClothTest = FeltdUnnicedTest;
 
 TEST_F(FeltdLiveClothTest, AClientFeelsSlidesAlongAndGrabsAMovingCloth) {
   Client client;
