@@ -1,6 +1,8 @@
 #include "scene/cloth_integrator_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 #include <string>
 
@@ -46,8 +48,45 @@ std::unique_ptr<Integrator> read_cloth_integrator(const ObjectReader& body) {
   return integrator;
 }
 
+namespace {
+
+/// Refuses a cloth whose stable `step` (s) divides the time step into more than `most` of
+/// them: no step of it could be stable. `steps` names them ("substeps", "internal steps"),
+/// `beyond` what bounds them.
+void refuse_beyond(const ObjectReader& body, const ClothBody& cloth, Real step, Real time_step,
+                   std::int64_t most, const char* steps, const std::string& beyond) {
+  if (!(time_step / step > static_cast<Real>(most))) return;
+  std::ostringstream text;
+  text << "too stiff for " << cloth.integrator().name() << ": a stable step would be " << step
+       << " s, " << std::ceil(time_step / step) << " " << steps << " of the time step, beyond "
+       << beyond << "; lower the stiffness, raise the mass or choose an implicit integrator";
+  fail(body.path_of("integrator"), text.str());
+}
+
+std::string step_budget(const HealthSettings& health) {
+  return "the step budget of " + std::to_string(health.step_budget) + " (health.step_budget)";
+}
+
+}  // namespace
+
 void check_stable_step(const ObjectReader& body, const ClothBody& cloth, Real time_step,
                        const HealthSettings& health) {
+  if (const auto* adaptive = dynamic_cast<const AdaptiveRungeKutta*>(&cloth.integrator())) {
+    // its error control picks its internal steps; the budget (and its own cap) can force
+    // longer ones, beyond its stability when the cloth is stiff and light: every step then
+    // grows and is stopped as unrecoverable
+    const Real internal = stable_cloth_step(
+        cloth, [&](const OscillatorMode& mode) { return adaptive->internal_step_limit(mode); });
+    const int cap = adaptive->max_internal_steps();
+    if (cap < health.step_budget) {
+      refuse_beyond(body, cloth, internal, time_step, cap, "internal steps",
+                    "its own cap of " + std::to_string(cap));
+    } else {
+      refuse_beyond(body, cloth, internal, time_step, health.step_budget, "internal steps",
+                    step_budget(health));
+    }
+    return;
+  }
   const Real limit = stable_cloth_step(cloth);
   const std::string name(cloth.integrator().name());
   if (!(limit > 0)) {
@@ -57,14 +96,9 @@ void check_stable_step(const ObjectReader& body, const ClothBody& cloth, Real ti
              "Give every spring kind damping (explicit_euler needs a step of at most "
              "damping/stiffness), or choose symplectic_euler, leapfrog or implicit_euler");
   }
-  if (health.auto_substeps && time_step / limit > health.step_budget) {
-    std::ostringstream text;
-    text << "too stiff for " << name << ": a stable step would be " << limit << " s, "
-         << std::ceil(time_step / limit) << " substeps of the time step, beyond the step budget of "
-         << health.step_budget
-         << " (health.step_budget); lower the stiffness, raise the mass or choose an implicit "
-            "integrator";
-    fail(body.path_of("integrator"), text.str());
+  if (health.auto_substeps) {
+    refuse_beyond(body, cloth, limit, time_step, health.step_budget, "substeps",
+                  step_budget(health));
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <regex>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -125,6 +126,41 @@ TEST(StableSubsteps, AStiffnessNoBudgetCanAffordIsRefusedWithTheStepItWouldNeed)
   EXPECT_EQ(scene.error().path, "bodies[0].integrator");
   EXPECT_NE(scene.error().message.find("a stable step would be"), std::string::npos)
       << scene.error().message;
+}
+
+TEST(StableSubsteps, AdaptiveRkOnAClothTooStiffForItsInternalStepsIsRefusedWithTheReason) {
+  // the extremes sweep's light stiff cloth (docs/results/extremes.md): 1 g on a 10 x 10 grid at
+  // 1e6 N/m and 10 ms steps. The cap forced internal steps beyond Dormand–Prince's stability
+  // (they must be within 0.7 µs, 14271 a step) and every step was stopped as unrecoverable
+  const std::string cloth = R"(
+    "bodies": [{ "type": "cloth", "grid": { "nx": 10, "ny": 10 }, "mass": 0.001,
+                 "integrator": "adaptive_rk", "pin": "top_corners",
+                 "springs": { "structural": { "stiffness": 1e6, "damping": 10 },
+                              "shear": { "stiffness": 2.5e5, "damping": 0 },
+                              "bend": { "stiffness": 2.5e4, "damping": 0 } } }] })";
+  const auto refused = load_scene_text(R"({ "time_step": 0.01, )" + cloth);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().path, "bodies[0].integrator");
+  EXPECT_NE(refused.error().message.find("too stiff for adaptive_rk: a stable step would be"),
+            std::string::npos)
+      << refused.error().message;
+  EXPECT_NE(refused.error().message.find("14271 internal steps of the time step, beyond the step "
+                                         "budget of 1000 (health.step_budget)"),
+            std::string::npos)
+      << refused.error().message;
+  // a larger budget does not help: its own cap of 10,000 internal steps is still too few
+  const auto capped =
+      load_scene_text(R"({ "time_step": 0.01, "health": { "step_budget": 100000 }, )" + cloth);
+  ASSERT_FALSE(capped);
+  EXPECT_NE(capped.error().message.find("beyond its own cap of 10000"), std::string::npos)
+      << capped.error().message;
+  // at a tenth of the step and a tenth of the damping (the sweep's 1e-3 k h), 705 of them: the
+  // default budget affords them, a budget of 500 does not
+  const std::string slower =
+      std::regex_replace(cloth, std::regex("\"damping\": 10"), "\"damping\": 1");
+  EXPECT_TRUE(load_scene_text(R"({ "time_step": 0.001, )" + slower));
+  EXPECT_FALSE(
+      load_scene_text(R"({ "time_step": 0.001, "health": { "step_budget": 500 }, )" + slower));
 }
 
 }  // namespace

@@ -60,10 +60,16 @@ Real stable_cloth_step(const ClothBody& body) {
   const Integrator& integrator = body.integrator();
   // an integrator without a limit has none on any mode: no eigenvalues to find
   if (integrator.step_limit({1, 0}) == kNoStepLimit) return kNoStepLimit;
+  return stable_cloth_step(body,
+                           [&](const OscillatorMode& mode) { return integrator.step_limit(mode); });
+}
+
+Real stable_cloth_step(const ClothBody& body,
+                       const std::function<Real(const OscillatorMode&)>& limit) {
   const ClothFastestMode mode = fastest_mode(body);
   if (mode.omega_squared == 0 && mode.most_rate == 0) return kNoStepLimit;
-  return kClothStepMargin * std::min(integrator.step_limit({mode.omega_squared, mode.least_rate}),
-                                     integrator.step_limit({mode.omega_squared, mode.most_rate}));
+  return kClothStepMargin * std::min(limit({mode.omega_squared, mode.least_rate}),
+                                     limit({mode.omega_squared, mode.most_rate}));
 }
 
 Real CachedStableStep::of(const ClothBody& body) {

@@ -4,6 +4,7 @@
 // comes from theirs, and the integrator's stability limit on that mode.
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <string_view>
 
@@ -35,6 +36,12 @@ inline constexpr Real kClothStepMargin = 0.8;
 /// mode from growing, at the least and at the most damping that mode can feel; 0 when no step
 /// can (explicit Euler on undamped springs), kNoStepLimit when the integrator has no limit.
 Real stable_cloth_step(const ClothBody& body);
+
+/// kClothStepMargin times the longest step `limit` allows the body's fastest mode, at the least
+/// and at the most damping it can feel (the steps of a scheme other than the body's integrator:
+/// adaptive_rk's internal ones); kNoStepLimit when the body has no mode to limit.
+Real stable_cloth_step(const ClothBody& body,
+                       const std::function<Real(const OscillatorMode&)>& limit);
 
 /// stable_cloth_step of one cloth, found again only when what it depends on changes: the
 /// integrator, the spring constants, the drag, the anchors' constants and the pins (a grab

@@ -119,6 +119,12 @@ void RungeKutta4::step(const DynamicSystem& system, ParticleState& state, Real t
   }
 }
 
+Real AdaptiveRungeKutta::internal_step_limit(const OscillatorMode& mode) const {
+  static constexpr std::array<Real, 7> kStabilityPolynomial{1,        1,         1.0 / 2,  1.0 / 6,
+                                                            1.0 / 24, 1.0 / 120, 1.0 / 600};
+  return polynomial_step_limit(kStabilityPolynomial, mode);
+}
+
 AdaptiveRungeKutta::AdaptiveRungeKutta(Real tolerance, int max_internal_steps)
     : tolerance_(tolerance), max_internal_steps_(max_internal_steps) {
   FELT_CHECK(tolerance > 0);

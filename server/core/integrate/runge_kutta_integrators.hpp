@@ -86,6 +86,11 @@ class AdaptiveRungeKutta final : public Integrator {
   int last_rejected_steps() const { return last_rejected_steps_; }
   /// The internal step size the next call tries first; 0 before the first call.
   Real internal_step() const { return internal_step_; }
+  /// The longest internal step with which the kept fifth-order solution keeps `mode` from
+  /// growing, R(z) = Σₖ₌₀⁵ zᵏ/k! + z⁶/600 (Hairer & Wanner, Solving ODEs II, §IV.2). The error
+  /// control keeps far below it; only the cap of internal steps forces longer ones, and a body
+  /// whose fastest mode needs more of them a step than its budget can never be stepped stably.
+  Real internal_step_limit(const OscillatorMode& mode) const;
 
   static constexpr int kStages = 7;
 

@@ -11,6 +11,7 @@
 
 #include "core/integrate/integrator.hpp"
 #include "core/integrate/oscillator.hpp"
+#include "core/integrate/runge_kutta_integrators.hpp"
 
 namespace felt::test {
 namespace {
@@ -73,6 +74,23 @@ TEST(StabilityLimit, EachIntegratorDecaysJustInsideItsLimitAndGrowsJustOutside) 
       EXPECT_GT(amplitude_after(*integrator, 100, rate, 1.03 * limit), 1);
     }
   }
+}
+
+TEST(StabilityLimit, AdaptiveRkForcedToOneInternalStepDecaysJustInsideItsLimitAndGrowsOutside) {
+  // one internal step a call, accepted whatever its error: Dormand–Prince 5 at a fixed step
+  AdaptiveRungeKutta forced(AdaptiveRungeKutta::kDefaultTolerance, 1);
+  for (Real rate : {0.0, 4.0, 40.0, 120.0, 300.0}) {
+    SCOPED_TRACE("c = " + std::to_string(rate));
+    const Real limit = forced.internal_step_limit({1e4, rate});
+    ASSERT_GT(limit, 0);
+    ASSERT_LT(limit, 1);
+    EXPECT_LT(amplitude_after(forced, 100, rate, 0.97 * limit), 1);
+    EXPECT_GT(amplitude_after(forced, 100, rate, 1.03 * limit), 1);
+  }
+  // undamped, the part of the imaginary axis its stability region holds: |R(iy)| first
+  // exceeds 1 at y = 0.9972 (a scan of the polynomial; Hairer & Wanner, Solving ODEs II, §IV.2,
+  // Fig. 2.1 shows the region leaving the axis near ±i)
+  EXPECT_NEAR(forced.internal_step_limit({1, 0}), 0.9972, 1e-4);
 }
 
 TEST(StabilityLimit, ImplicitAndAdaptiveIntegratorsHaveNone) {
