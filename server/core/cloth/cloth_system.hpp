@@ -123,6 +123,9 @@ class ClothSystem {
   /// Cloth `index`'s kinetic and elastic energy (`kinetic_elastic`, J) plus its weight times
   /// its size: what the energy balance's tolerance is a fraction of.
   Real energy_scale(std::size_t index, Real kinetic_elastic) const;
+  /// The energy below which a change of body `index`'s energy says nothing: rounding, and the
+  /// energy its integrator's accepted position error can show.
+  Real energy_floor(std::size_t index) const;
   /// Kinetic, elastic (ClothBody::elastic_energy_in_steps_of) and gravitational energy.
   static Real mechanical_energy(const ClothBody& body, Real h);
 

@@ -41,6 +41,11 @@ class Integrator {
   /// its error control rejected, implicit Euler's conjugate gradients stopped unconverged.
   virtual bool last_step_capped() const { return false; }
 
+  /// For an integrator with error control (adaptive_rk): the position error on any particle it
+  /// accepts per internal step, m; 0 for the others. An error this size shows as elastic and
+  /// kinetic energy in a stiff body, which the health check must not count as growth.
+  virtual Real position_tolerance() const { return 0; }
+
   /// For an integrator that projects the springs as constraints (xpbd): how long the substeps
   /// it projects them over are when a step is h; 0 for the others, which apply them as forces.
   virtual Real constraint_substep(Real /*h*/) const { return 0; }

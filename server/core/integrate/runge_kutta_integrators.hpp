@@ -72,6 +72,7 @@ class AdaptiveRungeKutta final : public Integrator {
   void reset() override { internal_step_ = 0; }
 
   Real tolerance() const { return tolerance_; }
+  Real position_tolerance() const override { return tolerance_; }
   int max_internal_steps() const { return max_internal_steps_; }
   /// Lowers the internal steps of each later call below max_internal_steps() (the world's step
   /// budget); a cap below 1 counts as 1.

@@ -23,6 +23,7 @@ class CountingIntegrator final : public Integrator {
   void limit_internal_steps(int cap) override { inner_->limit_internal_steps(cap); }
   int last_internal_steps() const override { return inner_->last_internal_steps(); }
   bool last_step_capped() const override { return inner_->last_step_capped(); }
+  Real position_tolerance() const override { return inner_->position_tolerance(); }
 
   /// The internal steps since the last call.
   long take_work() { return std::exchange(work_, 0); }
