@@ -67,8 +67,8 @@ bool fits(std::span<const float> xyz, const QuantizationBounds& bounds) {
   // that a NaN does not fit either
   unsigned outside = 0;
   for_each_lane(xyz.size(), [&](std::size_t i, std::size_t j) {
-    const bool in = (x[i] >= lower[j]) & (x[i] <= upper[j]);
-    outside |= in ? 0u : 1u;
+    const unsigned in = unsigned{x[i] >= lower[j]} & unsigned{x[i] <= upper[j]};
+    outside |= in ^ 1u;
   });
   return outside == 0;
 }

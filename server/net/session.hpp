@@ -23,7 +23,8 @@
 
 namespace felt::net {
 
-class Session : public std::enable_shared_from_this<Session>, private OutboundQueue::Listener {
+class Session final : public std::enable_shared_from_this<Session>,
+                      private OutboundQueue::Listener {
  public:
   Session(std::unique_ptr<Transport> transport, ServerContext& context);
   ~Session();
