@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/geometry/procedural_surfaces.hpp"
+#include "core/math/bounds_of.hpp"
 #include "core/solids/tet_lattice.hpp"
 #include "core/solids/voxel_lattice.hpp"
 #include "scene/body_step_reader.hpp"
@@ -89,9 +90,7 @@ SolidShape read_shape(const ObjectReader& body, const std::filesystem::path& ass
     take_lattice(mesh.path_of("resolution"), resolution, particles_left);
     // the lattice's cells are the surface's extent over the resolution: none, no cells
     // (found by scripts/fuzz obj_reader: the voxelizer's check stopped the process)
-    Eigen::AlignedBox<Real, 3> bounds;
-    for (const Vec3& p : surface->positions) bounds.extend(p);
-    if (!(bounds.sizes().maxCoeff() > 0)) {
+    if (!(bounds_of(surface->positions).sizes().maxCoeff() > 0)) {
       fail(mesh.path_of("file"),
            "its vertices all lie at one point: a solid needs a surface "
            "that encloses something");

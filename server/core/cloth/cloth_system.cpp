@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/math/bounds_of.hpp"
 #include "core/math/check.hpp"
 #include "core/step/substeps_for.hpp"
 
@@ -16,14 +17,7 @@ constexpr Real kEnergyFloor = 1e-9;
 
 std::uint32_t ClothSystem::add_body(ClothBody body) {
   BodyHealth health;
-  if (!body.state().x.empty()) {
-    Vec3 low = body.state().x[0], high = low;
-    for (const Vec3& x : body.state().x) {
-      low = low.cwiseMin(x);
-      high = high.cwiseMax(x);
-    }
-    health.size = (high - low).norm();
-  }
+  if (!body.state().x.empty()) health.size = bounds_of(body.state().x).diagonal().norm();
   for (Real m : body.model().mass) {
     health.mass += m;
     health.lightest = std::min(health.lightest, m);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/math/bounds_of.hpp"
 #include "core/math/check.hpp"
 
 namespace felt {
@@ -47,9 +48,7 @@ std::uint8_t outcode(const Vec3& x, const BoundingBox& box) {
 }
 
 BoundingBox bounding_box(const SolidBody& body) {
-  BoundingBox box;  // empty
-  for (const Vec3& x : body.positions()) box.extend(x);
-  return box;
+  return bounds_of(body.positions());
 }
 
 }  // namespace

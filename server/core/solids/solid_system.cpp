@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/math/bounds_of.hpp"
 #include "core/math/check.hpp"
 #include "core/solids/solid_collider_contact.hpp"
 #include "core/step/energy_balance.hpp"
@@ -26,14 +27,9 @@ SolidSystem::SolidSystem(SolidStepSettings settings) {
 
 std::uint32_t SolidSystem::add_body(SolidBody body) {
   bodies_.push_back(std::move(body));
-  Vec3 low = Vec3::Constant(std::numeric_limits<Real>::max()), high = -low;
-  for (const SolidBody& b : bodies_) {
-    for (const Vec3& x : b.positions()) {
-      low = low.cwiseMin(x);
-      high = high.cwiseMax(x);
-    }
-  }
-  size_ = (high - low).norm();
+  Eigen::AlignedBox<Real, 3> bounds;
+  for (const SolidBody& b : bodies_) bounds.extend(bounds_of(b.positions()));
+  size_ = bounds.diagonal().norm();
   // thesis 2 §2.2: the grid cell is the mean edge length
   detector_.set_cell_size(mean_rest_edge_length(bodies_));
   return static_cast<std::uint32_t>(bodies_.size() - 1);

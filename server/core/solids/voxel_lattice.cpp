@@ -5,6 +5,7 @@
 #include <numbers>
 #include <vector>
 
+#include "core/math/bounds_of.hpp"
 #include "core/math/check.hpp"
 #include "core/solids/tet_lattice.hpp"
 
@@ -124,8 +125,7 @@ class CellSet {
 EmbeddedSolid voxelize_surface(const TriangleMesh& surface, int resolution) {
   FELT_CHECK(resolution >= 1);
   FELT_CHECK(!surface.triangles.empty());
-  Eigen::AlignedBox<Real, 3> bounds;
-  for (const Vec3& p : surface.positions) bounds.extend(p);
+  const Eigen::AlignedBox<Real, 3> bounds = bounds_of(surface.positions);
   const Real cell = bounds.sizes().maxCoeff() / resolution;
   FELT_CHECK(cell > 0);
 
