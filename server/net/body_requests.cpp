@@ -181,8 +181,8 @@ void handle_add_body(Session& session, std::uint64_t id, const v1::AddBody& add)
         const std::uint64_t limit = context.options.max_particles_per_scene;
         options.max_particles = used < limit ? limit - used : 0;
         options.asset_root = context.scene_directory.root();
-        auto built =
-            load_body(*entry, "body", scene->bodies()->bodies.size(), scene->time_step(), options);
+        auto built = load_body(*entry, "body", scene->bodies()->bodies.size(), scene->time_step(),
+                               options, scene->health_settings());
         if (!built) return bad(built.error());
         return std::move(*built);
       },

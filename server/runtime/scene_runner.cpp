@@ -37,6 +37,7 @@ SceneRunner::SceneRunner(Scene scene, SceneAccess access, SceneReloader reload, 
       access_(access),
       haptics_(scene.haptics),
       time_step_(scene.world.settings().time_step),
+      health_settings_(scene.world.settings().health),
       live_(std::move(scene), access.owner, clock),
       requests_(live_, commands_, members_, std::move(reload), limits),
       haptic_frames_(live_, live_.scene.haptic_structure) {

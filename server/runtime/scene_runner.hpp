@@ -84,6 +84,9 @@ class SceneRunner {
   const SceneAccess& access() const { return access_; }
   const ProxySettings& haptics() const { return haptics_; }
   Real time_step() const { return time_step_; }
+  /// The scene's health settings, which nothing changes while it runs: what a body added to it
+  /// is checked against.
+  const HealthSettings& health_settings() const { return health_settings_; }
   SceneMembers& members() { return members_; }
 
   /// The scene's bodies now (never null). A body a request added is in it before the request's
@@ -195,6 +198,7 @@ class SceneRunner {
   SceneAccess access_;
   ProxySettings haptics_;
   Real time_step_;
+  HealthSettings health_settings_;
   SceneMembers members_;
   CommandQueue commands_;
   ReactionAccumulator reactions_;

@@ -131,6 +131,21 @@ TEST_F(FeltdTest, BadBodiesAreRefusedWithTheirJsonPath) {
   EXPECT_EQ(client->stats().scene().bodies(), 1u);  // nothing was added
 }
 
+TEST_F(FeltdTest, ABodyAddedAtRunTimeIsCheckedAgainstItsScenesHealthSettings) {
+  // a cloth whose stable step under symplectic Euler is about 0.1 ms: some 100 substeps of a
+  // 10 ms step, which the default budget of 1000 affords and a budget of 10 does not. It was
+  // checked against the default settings, whatever its scene said
+  const std::string stiff = R"({"type": "cloth", "grid": {"nx": 6, "ny": 6},
+      "integrator": "symplectic_euler", "springs": {"structural": {"stiffness": 1e6}}})";
+  auto client = greeted("adder");
+  client->load_scene_json(R"({"time_step": 0.01, "health": {"step_budget": 10}, "bodies": []})");
+  expect_error([&] { client->add_body(stiff); }, v1::ERROR_CODE_BAD_SCENE,
+               "beyond the step budget of 10 (health.step_budget)");
+  EXPECT_EQ(client->stats().scene().bodies(), 0u);
+  client->load_scene_json(R"({"time_step": 0.01, "bodies": []})");
+  EXPECT_EQ(client->add_body(stiff).body().kind(), "cloth");
+}
+
 TEST_F(FeltdTest, AForcePushesTheClothForItsDuration) {
   auto client = greeted("pusher");
   client->load_scene_by_name("default");
