@@ -1,6 +1,5 @@
 #include "scene/cloth_integrator_reader.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <sstream>

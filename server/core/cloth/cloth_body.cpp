@@ -236,8 +236,10 @@ Real ClothBody::elastic_energy(Real constraint_substep) const {
     const SpringParams& sp = params_.spring(s.kind);
     if (!sp.enabled) continue;
     const Real stretch = (state_.x[s.i] - state_.x[s.j]).norm() - s.rest_length;
+    // forces (h = 0, every integrator but xpbd): the nominal k, without a division per spring
     const Real stiffness =
-        sp.stiffness / (1 + sp.stiffness * (inv_mass_[s.i] + inv_mass_[s.j]) * h2);
+        h2 > 0 ? sp.stiffness / (1 + sp.stiffness * (inv_mass_[s.i] + inv_mass_[s.j]) * h2)
+               : sp.stiffness;
     energy += 0.5 * stiffness * stretch * stretch;
   }
   for (const Anchor& a : anchors_) {
