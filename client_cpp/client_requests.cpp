@@ -209,6 +209,7 @@ v1::Subscribed Client::subscribe_frames(const FrameSubscription& subscription) {
                                                  : v1::FRAME_ENCODING_FLOAT32);
   subscribe->set_deltas(subscription.deltas);
   subscribe->set_scalars(subscription.scalars);
+  subscribe->set_max_unacknowledged(subscription.max_unacknowledged);
   return request(message, v1::ServerMessage::kSubscribed).subscribed();
 }
 

@@ -40,6 +40,8 @@ struct FrameSubscription {
   bool quantized = false;               ///< 16-bit positions (and normals)
   bool deltas = false;                  ///< quantized only: changes against acknowledged frames
   bool scalars = false;                 ///< a number per vertex: a cloth's strain
+  /// frames not yet acknowledged (ack_frame) that the server may have sent, at most (0: any)
+  std::uint32_t max_unacknowledged = 0;
 };
 
 class Client {

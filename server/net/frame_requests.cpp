@@ -32,6 +32,11 @@ void handle_subscribe(Session& session, std::uint64_t id, const v1::SubscribeFra
   if (subscribe.deltas() && !quantized) {
     return bad(v1::ERROR_CODE_BAD_REQUEST, "deltas need the QUANTIZED16 encoding");
   }
+  if (subscribe.max_unacknowledged() > FrameStream::kMaxWindow) {
+    return bad(v1::ERROR_CODE_LIMIT_EXCEEDED,
+               "max_unacknowledged " + std::to_string(subscribe.max_unacknowledged()) +
+                   " is above the limit of " + std::to_string(FrameStream::kMaxWindow));
+  }
   std::vector<BodyId> wanted = sorted_unique(subscribe.body_ids());
   const auto bodies = session.scene()->bodies();
   for (BodyId body : wanted) {
@@ -47,6 +52,7 @@ void handle_subscribe(Session& session, std::uint64_t id, const v1::SubscribeFra
   options.quantized = quantized;
   options.deltas = subscribe.deltas();
   options.scalars = subscribe.scalars();
+  options.max_unacknowledged = subscribe.max_unacknowledged();
   session.subscribe_frames(options);
   reply(session, id, [&](v1::ServerMessage& message) {
     v1::Subscribed& subscribed = *message.mutable_subscribed();
@@ -54,6 +60,7 @@ void handle_subscribe(Session& session, std::uint64_t id, const v1::SubscribeFra
     subscribed.set_rate_hz(options.rate_hz);
     subscribed.set_encoding(subscribe.encoding());
     subscribed.set_deltas(options.deltas);
+    subscribed.set_max_unacknowledged(options.max_unacknowledged);
   });
 }
 

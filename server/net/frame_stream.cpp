@@ -155,6 +155,7 @@ void FrameStream::restart() {
   building_ = {};
   written_.clear();
   base_.reset();
+  unacknowledged_.clear();
 }
 
 FrameStream::Plan FrameStream::plan(std::shared_ptr<const SceneSnapshot> snapshot, SceneId scene,
@@ -306,6 +307,7 @@ std::size_t FrameStream::history_bytes() const {
 
 void FrameStream::written() {
   building_topology_.clear();
+  if (options_.max_unacknowledged != 0) unacknowledged_.push_back(building_.sequence);
   if (!options_.quantized || !options_.deltas) return;
   written_.push_back(std::make_shared<const FrameRecord>(std::move(building_)));
   building_ = {};
@@ -318,6 +320,9 @@ void FrameStream::written() {
 
 bool FrameStream::acknowledge(std::uint64_t sequence) {
   if (sequence == 0 || sequence >= next_sequence_) return false;
+  while (!unacknowledged_.empty() && unacknowledged_.front() <= sequence) {
+    unacknowledged_.pop_front();
+  }
   const auto it = std::find_if(written_.begin(), written_.end(), [sequence](const auto& frame) {
     return frame->sequence == sequence;
   });

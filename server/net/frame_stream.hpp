@@ -29,6 +29,8 @@ struct FrameOptions {
   bool quantized = false;
   bool deltas = false;   ///< quantized only
   bool scalars = false;  ///< a number per vertex: a cloth's strain
+  /// frames written and not yet acknowledged, at most (0: no limit)
+  std::uint32_t max_unacknowledged = 0;
 };
 
 /// A proxy as a frame shows it to one subscriber.
@@ -106,9 +108,17 @@ class FrameStream {
   void dropped();
   /// The frame last built was handed to the socket.
   void written();
-  /// The client has frame `sequence`; later deltas may use it as their base. False when no
-  /// frame with that sequence was built.
+  /// The client has frame `sequence`, and every frame before it; later deltas may use it as
+  /// their base. False when no frame with that sequence was built.
   bool acknowledge(std::uint64_t sequence);
+  /// The subscription's window of unacknowledged frames is full: no frame may be built.
+  bool window_full() const {
+    return options_.max_unacknowledged != 0 &&
+           unacknowledged_.size() >= options_.max_unacknowledged;
+  }
+  /// The largest window a subscription may ask for: the stream keeps the sequence of each
+  /// frame in it.
+  static constexpr std::uint32_t kMaxWindow = 64;
 
   /// Frames written and kept as possible delta bases, at most; fewer when they would cost more
   /// than the history's budget (a scene of millions of vertices), and none when one frame
@@ -140,6 +150,8 @@ class FrameStream {
   /// shared with the plans that use them as bases, which may be encoding on another thread
   std::deque<std::shared_ptr<const FrameRecord>> written_;
   std::shared_ptr<const FrameRecord> base_;  ///< the latest acknowledged frame still kept
+  /// the frames written and not acknowledged, oldest first; kept only under a window
+  std::deque<std::uint64_t> unacknowledged_;
 };
 
 }  // namespace felt::net

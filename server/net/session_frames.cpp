@@ -96,8 +96,9 @@ void SessionFrames::tick() {
     if (stream_.has_new(*snapshot)) {
       lost_ += late;
       skipped_ += late;
-      if (encoding_) {
-        // a frame still with the encoder (a busy server) is the latest one: no other is
+      if (encoding_ || stream_.window_full()) {
+        // a frame still with the encoder (a busy server) is the latest one, and a client with
+        // its window of unacknowledged frames full has not drawn the ones it has: no other is
         // planned, and this one is lost
         ++lost_;
         ++skipped_;

@@ -207,6 +207,44 @@ TEST(FrameStream, ADroppedFrameGivesItsTrianglesToTheNext) {
   EXPECT_EQ(next.skipped(), 1u);
 }
 
+// A window of unacknowledged frames (SubscribeFrames.max_unacknowledged) is full while that many
+// frames were written and not acknowledged; an acknowledgement takes every frame up to the one it
+// names out of it, and a frame dropped unsent never counts.
+TEST(FrameStream, TheWindowCountsWrittenFramesUntilAnAcknowledgementCoversThem) {
+  World world = swinging_world();
+  FrameStream stream;
+  FrameOptions options;
+  options.max_unacknowledged = 2;
+  stream.start(options);
+  client::FrameAssembler assembler;
+  const Sent first = send(stream, world, assembler);
+  EXPECT_FALSE(stream.window_full());
+  world.step();
+  v1::Frame dropped;
+  stream.build(make_snapshot(world), 7, 0, dropped);
+  stream.dropped();
+  EXPECT_FALSE(stream.window_full());
+  world.step();
+  send(stream, world, assembler);
+  EXPECT_TRUE(stream.window_full());
+  ASSERT_TRUE(stream.acknowledge(first.frame.sequence()));
+  EXPECT_FALSE(stream.window_full());
+  world.step();
+  const Sent third = send(stream, world, assembler);
+  EXPECT_TRUE(stream.window_full());
+  ASSERT_TRUE(stream.acknowledge(third.frame.sequence()));  // the second with it
+  EXPECT_FALSE(stream.window_full());
+  // subscribing again starts an empty window; without one, nothing is counted
+  send(stream, world, assembler);
+  send(stream, world, assembler);
+  ASSERT_TRUE(stream.window_full());
+  stream.start(options);
+  EXPECT_FALSE(stream.window_full());
+  stream.start(FrameOptions{});
+  for (int i = 0; i < 100; ++i) send(stream, world, assembler);
+  EXPECT_FALSE(stream.window_full());
+}
+
 TEST(FrameStream, ASubscriptionSeesOnlyItsBodies) {
   World world = swinging_world(true);
   FrameStream stream;

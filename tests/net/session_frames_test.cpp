@@ -99,5 +99,50 @@ TEST(SessionFrames, FramesNotBuiltAtTheGrantedRateAreCountedAsSkipped) {
   EXPECT_GE(stats.session().frames_skipped(), second->skipped());
 }
 
+// Issue 32: a page drawing slower than its frame rate had seconds of frames queued in the sockets,
+// and its ForceUpdates behind them. With a window, a client that acknowledges nothing gets that
+// many frames and no more, and each acknowledgement lets as many more come as it took out.
+TEST(SessionFrames, AClientGetsNoMoreFramesThanItsWindowUntilItAcknowledgesThem) {
+  InProcessServer server(flat_cloth_scene(Vec3(0, -9.81, 0)));  // it sags: always something new
+  auto client = server.greeted("slow page");
+  client::FrameSubscription subscription;
+  subscription.max_rate_hz = 100;
+  subscription.max_unacknowledged = 2;
+  EXPECT_EQ(client->subscribe_frames(subscription).max_unacknowledged(), 2u);
+  const auto frames = [&](std::size_t count) {
+    std::vector<v1::Frame> got;
+    while (got.size() < count) {
+      auto frame = client->next_frame(5s);
+      if (!frame) break;
+      got.push_back(std::move(*frame));
+    }
+    EXPECT_EQ(got.size(), count);
+    // at 100 Hz, 50 frames were due meanwhile
+    EXPECT_FALSE(client->next_frame(500ms)) << "more frames than the window's";
+    return got;
+  };
+  const auto window = frames(2);
+  client->ack_frame(window.at(0).sequence());
+  const auto one_more = frames(1);
+  EXPECT_GE(one_more.at(0).skipped(), 1u);       // the ticks lost while the window was full
+  client->ack_frame(one_more.at(0).sequence());  // and window[1] with it
+  frames(2);
+}
+
+TEST(SessionFrames, AWindowAboveTheLimitIsRefused) {
+  InProcessServer server(flat_cloth_scene());
+  auto client = server.greeted("greedy page");
+  client::FrameSubscription subscription;
+  subscription.max_unacknowledged = FrameStream::kMaxWindow + 1;
+  try {
+    client->subscribe_frames(subscription);
+    ADD_FAILURE() << "subscribed";
+  } catch (const client::ClientError& e) {
+    EXPECT_EQ(e.code(), v1::ERROR_CODE_LIMIT_EXCEEDED);
+    EXPECT_EQ(std::string(e.what()), "max_unacknowledged 65 is above the limit of 64");
+  }
+  EXPECT_FALSE(client->next_frame(300ms));
+}
+
 }  // namespace
 }  // namespace felt::net

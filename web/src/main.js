@@ -14,6 +14,11 @@ const INTEGRATORS = ["explicit_euler", "symplectic_euler", "midpoint", "rk4", "a
   "verlet", "velocity_verlet", "leapfrog", "implicit_euler", "imex", "desbrun", "kang", "xpbd"];
 const STATS_PERIOD_MS = 250;
 const FRAME_RATE_HZ = 60;
+// frames the server may have sent that this page has not yet taken in (it acknowledges each one
+// it decodes): one on the way while it decodes another. Without a window, a page slower than the
+// frame rate (software WebGL) had seconds of frames queued in the sockets, and its ForceUpdates
+// behind them
+const FRAME_WINDOW = 2;
 
 const $ = (id) => document.getElementById(id);
 const params = new URLSearchParams(location.search);
@@ -147,7 +152,7 @@ function subscribe() {
     case: "subscribeFrames",
     value: { maxRateHz: FRAME_RATE_HZ, normals: true,
              encoding: ENCODING === "float32" ? FrameEncoding.FLOAT32 : FrameEncoding.QUANTIZED16,
-             deltas: ENCODING === "deltas", scalars },
+             deltas: ENCODING === "deltas", scalars, maxUnacknowledged: FRAME_WINDOW },
   });
 }
 
