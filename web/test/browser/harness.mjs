@@ -62,9 +62,11 @@ export function launchBrowser() {
 }
 
 /// Opens `url` in a new page and waits until the page has its scene and frames; the page's
-/// console errors and page errors are collected in `errors`.
-export async function openPage(browser, url, { width = 1100, height = 700 } = {}) {
+/// console errors and page errors are collected in `errors`. `prepare(page)` runs before the
+/// page loads (to listen to its WebSocket from the start).
+export async function openPage(browser, url, { width = 1100, height = 700, prepare } = {}) {
   const page = await browser.newPage({ viewport: { width, height } });
+  prepare?.(page);
   const errors = [];
   page.on("console", (message) => {
     if (message.type() === "error") errors.push(message.text());
