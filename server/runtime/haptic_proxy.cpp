@@ -68,6 +68,23 @@ ProxyOutput HapticProxy::hold(ReactionAccumulator& reactions) const {
   return out;
 }
 
+std::optional<ContactSpring> HapticProxy::contact_spring(
+    const HapticSurface& surface, const HapticBody& body, const Triangle& corners,
+    const Vec3& barycentric, const Vec3& proxy, const Vec3& device, const Vec3& normal) const {
+  ContactSpring spring;
+  // along the normal the force is shaded with, else along the spring itself
+  spring.normal = normal.norm() > 0 ? normal.normalized() : Vec3((proxy - device).normalized());
+  spring.stretch = (proxy - device).dot(spring.normal);
+  if (!(spring.stretch > 0) || !(settings_.stiffness > 0) || !spring.normal.allFinite()) {
+    return std::nullopt;
+  }
+  for (int c = 0; c < 3; ++c) spring.contact += barycentric[c] * surface.vertex(body, corners[c]);
+  spring.max_force = settings_.max_force;
+  spring.stiffness = settings_.stiffness;
+  spring.device = device;
+  return spring;
+}
+
 std::optional<Collider> HapticProxy::finger(const Vec3& centre) const {
   if (!(settings_.radius > 0)) return std::nullopt;
   Collider sphere;
@@ -87,9 +104,12 @@ ProxySample HapticProxy::local_sample(const HapticSurface& surface, const Vec3& 
       static_cast<std::size_t>(local.triangle) < body->triangles.size()) {
     const Real stiffness = std::min(local.stiffness, settings_.stiffness);
     const Vec3 force = clamped_spring_force(stiffness, local.proxy - device, settings_.max_force);
+    // as felt, held as it is: the client renders against its own copy of the surface, seconds
+    // of which may lie between its contact and this one (its renderer keeps the contact
+    // passive, passive_stiffness)
     sample.push =
         ProxySample::Push{local.body_id, body->triangles[static_cast<std::size_t>(local.triangle)],
-                          local.barycentric, -force};
+                          local.barycentric, -force, std::nullopt};
   }
   sample.sphere = finger(local.proxy);
   return sample;
@@ -153,7 +173,7 @@ ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec
     if (!out.contact.force.allFinite()) return hold(reactions);  // a grabbed vertex gone bad
     sample.push =
         ProxySample::Push{grab_->body, Triangle{grab_->vertex, grab_->vertex, grab_->vertex},
-                          Vec3(1, 0, 0), -out.contact.force};
+                          Vec3(1, 0, 0), -out.contact.force, std::nullopt};
     sample.grab =
         GrabSpring{grab_->body, grab_->vertex, device, settings_.stiffness, settings_.damping};
   } else if (local) {
@@ -163,9 +183,11 @@ ProxyOutput HapticProxy::update(const HapticSurface& surface, Real dt, const Vec
   } else {
     if (out.contact.in_contact && out.contact.triangle >= 0) {
       const HapticBody& body = *surface.find(out.contact.body_id);
+      const Triangle& corners = body.triangles[static_cast<std::size_t>(out.contact.triangle)];
       sample.push = ProxySample::Push{
-          out.contact.body_id, body.triangles[static_cast<std::size_t>(out.contact.triangle)],
-          out.contact.barycentric, -out.contact.force};
+          out.contact.body_id, corners, out.contact.barycentric, -out.contact.force,
+          contact_spring(surface, body, corners, out.contact.barycentric, out.contact.proxy, device,
+                         out.contact.normal)};
     }
     // the finger takes room: vertices cannot move into the inner half of the proxy's sphere,
     // so a cloth pressed hard wraps around it instead of folding into it; the outer half is

@@ -94,6 +94,13 @@ class HapticProxy {
   Vec3 grab_force(const HapticSurface& surface, const Vec3& device) const;
   /// The reply to an update that is no reading: no force, nothing pushed or pulled.
   ProxyOutput hold(ReactionAccumulator& reactions) const;
+  /// The spring of a push onto `corners` of `body` at `barycentric`, from the proxy at `proxy`
+  /// held by the device at `device`, shaded along `normal` (zero: along the spring); null when
+  /// it is not stretched (ContactSpring).
+  std::optional<ContactSpring> contact_spring(const HapticSurface& surface, const HapticBody& body,
+                                              const Triangle& corners, const Vec3& barycentric,
+                                              const Vec3& proxy, const Vec3& device,
+                                              const Vec3& normal) const;
   /// The room the finger takes around a proxy centred at `centre` (see update), if any.
   std::optional<Collider> finger(const Vec3& centre) const;
   /// What the body feels of a local renderer's contact.

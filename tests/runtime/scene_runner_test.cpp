@@ -158,13 +158,15 @@ TEST(SceneRunner, ASingleTouchKeepsPushingUntilTheNextUpdate) {
   ASSERT_TRUE(settled(clock));
   clock.advance(500us);
   ASSERT_TRUE(move_clock(clock, 200ms));
-  EXPECT_LT(runner.latest()->bodies[0].positions[centre].y(), -0.005);
-  // a free update releases it: the sheet springs back toward flat
+  const Real dented = runner.latest()->bodies[0].positions[centre].y();
+  EXPECT_LT(dented, -0.005);
+  // a free update releases it: the sheet springs back toward flat (slowly from a shallow dent:
+  // the tension of a sheet with none at rest grows with the square of its dent)
   touch(runner, proxy, Vec3(0, 1, 0));
   ASSERT_TRUE(move_clock(clock, 1800ms));
   runner.stop();
   EXPECT_EQ(runner.latest()->step, 2000u);
-  EXPECT_GT(runner.latest()->bodies[0].positions[centre].y(), -0.002);
+  EXPECT_GT(runner.latest()->bodies[0].positions[centre].y(), dented * 2 / 3);
 }
 
 TEST(SceneRunner, AClientsArrivalHasThePhysicsThreadMakeHapticFramesBeforeItsFirstTouch) {
