@@ -246,7 +246,7 @@ Run run_proxy(const FrozenCloth& cloth, const TriangleQuery& query,
               const std::vector<HapticRecord>& input) {
   HapticSurface surface;
   surface.bodies.push_back(HapticBody{0, cloth.triangles, cloth.frozen, cloth.frozen, cloth.normals,
-                                      cloth.normals, &query});
+                                      cloth.normals, &query, SurfaceMotion{}});
   surface.step = 1;
   surface.alpha = 1;
   GodObject proxy(ProxySettings{}, input.front().position);
