@@ -4,6 +4,7 @@ Environment: FELTD (the feltd binary), FELT_SCENE_DIR (the repository's scenes/)
 PYTHONPATH holding the generated felt.v1 modules and client_python/. Exits non-zero on failure.
 """
 
+import faulthandler
 import math
 import os
 import signal
@@ -199,6 +200,9 @@ def test_shutdown(client, port, process):
 
 
 def main():
+    # ctest stops the test at 60 s; a hang says where it is before that (it once timed out in a
+    # full-suite run, and passed alone)
+    faulthandler.dump_traceback_later(50)
     with tempfile.TemporaryFile() as log:
         process, port = start_feltd(log)
         try:
@@ -208,9 +212,9 @@ def main():
                              test_touch, test_nan_position, test_local_model, test_garbage,
                              test_viewer_additions, test_stats):
                     test(client, port)
-                    print("ok", test.__name__)
+                    print("ok", test.__name__, flush=True)
                 test_shutdown(client, port, process)
-                print("ok", test_shutdown.__name__)
+                print("ok", test_shutdown.__name__, flush=True)
         except Exception:
             traceback.print_exc()
             return 1
