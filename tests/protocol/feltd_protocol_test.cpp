@@ -226,6 +226,9 @@ TEST_F(FeltdLiveClothTest, PositionsBeyondTheBoundAreRefusedAndTheProxyCarriesOn
   Client client;
   connect(client);
   client.hello("test");
+  // a still curtain while the refusals come: the touch is the same before and after them (a
+  // running one gives way under the push between them, by how much depends on the load)
+  client.pause();
   using Point = std::array<double, 3>;
   const double huge = std::numeric_limits<double>::max();
   const std::vector<Point> beyond = {
@@ -243,6 +246,7 @@ TEST_F(FeltdLiveClothTest, PositionsBeyondTheBoundAreRefusedAndTheProxyCarriesOn
   EXPECT_FALSE(client.proxy_update(0, {0, 0, 1e6}).in_contact());
   EXPECT_TRUE(client.proxy_update(0, touching).in_contact());
 
+  client.resume();  // the grab below pulls the running curtain
   v1::ForceUpdate grab = client.proxy_update(0, touching, 1);
   ASSERT_TRUE(grab.grabbing());
   const std::uint32_t held = grab.grabbed_vertex();
