@@ -51,16 +51,22 @@ Vec3 touched_point(const World& world, const ProxySample::Push& push) {
 }  // namespace
 
 void ReactionAccumulator::apply_contact(World& world, ProxyReaction& reaction, bool held) {
-  ContactEnergy& observed = reaction.contact;
   const std::optional<ProxySample::Push>& push = reaction.held_push;
-  if (!push || !push->spring || !corners_in_world(world, *push)) {
-    observed = {};
-    for (const ParticleForce& pf : reaction.held) {
-      if (in_world(world, pf.body_id, pf.particle))
-        world.add_surface_force(pf.body_id, pf.particle, pf.force);
-    }
-    return;
+  Real scale = 1;
+  if (push && push->spring && corners_in_world(world, *push)) {
+    scale = spring_scale(world, reaction, held);
+  } else {
+    reaction.contact = {};  // no contact spring: the push as it was rendered
   }
+  for (const ParticleForce& pf : reaction.held) {
+    if (in_world(world, pf.body_id, pf.particle))
+      world.add_surface_force(pf.body_id, pf.particle, scale * pf.force);
+  }
+}
+
+Real ReactionAccumulator::spring_scale(const World& world, ProxyReaction& reaction, bool held) {
+  ContactEnergy& observed = reaction.contact;
+  const ProxySample::Push& push = *reaction.held_push;
   // the observer: the work the body took out over the last step at the point it was pushed at
   Vec3 moved = Vec3::Zero();
   const bool went_on = observed.touching && corners_in_world(world, observed.push);
@@ -72,15 +78,15 @@ void ReactionAccumulator::apply_contact(World& world, ProxyReaction& reaction, b
   }
   observed.device_work = 0;
 
-  const ContactSpring& spring = *push->spring;
+  const ContactSpring& spring = *push.spring;
   Real inverse_mass = 0;
   for (int c = 0; c < 3; ++c) {
-    inverse_mass += push->barycentric[c] * push->barycentric[c] *
-                    surface_inverse_mass(world, push->body_id, push->corners[c]);
+    inverse_mass += push.barycentric[c] * push.barycentric[c] *
+                    surface_inverse_mass(world, push.body_id, push.corners[c]);
   }
   const Real h = world.settings().time_step;
   const Real stable = inverse_mass > 0 ? 1 / (inverse_mass * h * h) : spring.stiffness;
-  const Vec3 contact = touched_point(world, *push);
+  const Vec3 contact = touched_point(world, push);
   const Real stretch = spring.stretch + std::min(Real{1}, stable / spring.stiffness) *
                                             (contact - spring.contact).dot(spring.normal);
   Vec3 total = Vec3::Zero();
@@ -91,14 +97,11 @@ void ReactionAccumulator::apply_contact(World& world, ProxyReaction& reaction, b
   // the controller: a held push in deficit is withheld from a body that gives way under it (the
   // motion of the last step, taken to go on); pressed in, it gets the spring
   if (held && went_on && observed.energy < 0 && total.dot(moved) > 0) scale = 0;
-  for (const ParticleForce& pf : reaction.held) {
-    if (in_world(world, pf.body_id, pf.particle))
-      world.add_surface_force(pf.body_id, pf.particle, scale * pf.force);
-  }
   observed.touching = true;
-  observed.push = *push;
+  observed.push = push;
   observed.contact = contact;
   observed.force = scale * total;
+  return scale;
 }
 
 void ReactionAccumulator::record(std::uint64_t proxy_key, const ProxySample& sample) {

@@ -112,6 +112,9 @@ class ReactionAccumulator {
   /// Applies `reaction`'s forces for this step, through its contact spring and, when they are
   /// `held` (no update since the last step), the passivity controller.
   static void apply_contact(World& world, ProxyReaction& reaction, bool held);
+  /// The factor on `reaction`'s forces its contact spring gives against `world` now, the
+  /// observer and the controller run (ContactSpring); its held push has a spring in the world.
+  static Real spring_scale(const World& world, ProxyReaction& reaction, bool held);
 
   struct ProxyReaction {
     std::vector<ParticleForce> forces;  ///< summed per particle since the last step
