@@ -156,12 +156,20 @@ class Client:
         source = {"name": name} if name is not None else {"json": json}
         return self.request(load_scene=scene_pb2.LoadScene(shared=shared, keep=keep, **source))
 
-    def subscribe_frames(self, max_rate_hz=0.0, normals=False, body_ids=(), scalars=False):
+    def subscribe_frames(self, max_rate_hz=0.0, normals=False, body_ids=(), scalars=False,
+                         max_unacknowledged=0):
         """Starts the frame stream (float32 positions; with `scalars`, a cloth's strain per
         vertex in BodyFrame.scalars); take frames with next_frame(). Every frame also lists the
-        scene's proxies (Frame.proxies), each with its client's name."""
+        scene's proxies (Frame.proxies), each with its client's name. With `max_unacknowledged`
+        the server sends no more frames than that before ack_frame() takes them in (a client
+        slower than the frame rate then never has frames queued in the network)."""
         return self.request(subscribe_frames=frames_pb2.SubscribeFrames(
-            max_rate_hz=max_rate_hz, normals=normals, body_ids=body_ids, scalars=scalars))
+            max_rate_hz=max_rate_hz, normals=normals, body_ids=body_ids, scalars=scalars,
+            max_unacknowledged=max_unacknowledged))
+
+    def ack_frame(self, sequence):
+        """Tells the server this client has frame `sequence` and every frame before it."""
+        return self.request(ack_frame=frames_pb2.AckFrame(sequence=sequence))
 
     def proxy_update(self, proxy_id, position, buttons=0):
         """Moves haptic proxy `proxy_id` (opened on first use) to `position` (x, y, z) in metres;

@@ -82,6 +82,21 @@ def test_frames(client, port):
     client.next_frame()
     third = client.next_frame()
     expect(third.step > first.step, f"step {first.step}, two frames later {third.step}")
+    # a window of one frame: nothing more until it is acknowledged (18 frames due at 60 Hz)
+    client.subscribe_frames(max_rate_hz=60, max_unacknowledged=1)
+    drained = time.monotonic() + 0.3
+    while time.monotonic() < drained:  # frames of the first subscription still on their way
+        try:
+            window = client.next_frame(drained - time.monotonic())
+        except TimeoutError:
+            break
+    try:
+        extra = client.next_frame(0.3)
+        raise AssertionError(f"a frame beyond the window: {extra.sequence} after {window.sequence}")
+    except TimeoutError:
+        pass
+    client.ack_frame(window.sequence)
+    expect(client.next_frame().sequence > window.sequence, "no frame after the acknowledgement")
     client.request(unsubscribe_frames={})
 
 
