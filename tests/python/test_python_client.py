@@ -169,15 +169,21 @@ def test_viewer_additions(client, port):
         other.hello("other-viewer")
         client.subscribe_frames(max_rate_hz=60, scalars=True)
         deadline = time.monotonic() + TIMEOUT
+        felt = []  # what the other client felt at each of its updates
         seen = None
-        # the first frames may catch the contact as it begins, its force still small
-        while (seen is None or seen.force.z <= 1) and time.monotonic() < deadline:
-            other.proxy_update(3, (0.0, 1.2, 0.01))  # pressing into the curtain, 1 kHz or so
+        # the curtain gives way under the touch, by as much as the machine's load lets it between
+        # the other's updates (one per frame here): the frame must show a force it was given
+        while (seen is None or not seen.in_contact) and time.monotonic() < deadline:
+            felt.append(other.proxy_update(3, (0.0, 1.2, 0.01)))  # pressing into the curtain
             frame = client.next_frame(deadline - time.monotonic())
             seen = next((p for p in frame.proxies if p.client_name == "other-viewer"), None)
         expect(seen is not None, "no frame showed the other client's proxy")
         expect(seen.proxy_id == 3 and not seen.own and seen.in_contact, f"the proxy: {seen}")
-        expect(seen.force.z > 1, f"its force: {seen.force}")
+        expect(seen.force.z > 0, f"its force: {seen.force}")
+        expect(any(update.in_contact and abs(update.force.z - seen.force.z) < 1e-9
+                   and abs(update.proxy.z - seen.position.z) < 1e-9 for update in felt),
+               f"the frame's force {seen.force.z} N is none the other client felt: "
+               f"{[update.force.z for update in felt[-5:]]}")
         curtain = next(body for body in frame.bodies if body.body_id == 0)
         expect(len(curtain.scalars) == 400, f"{len(curtain.scalars)} scalars")
         # hanging from two corners under its weight, every spring is stretched a little
