@@ -53,11 +53,20 @@ void ExtrapolatedSurface::take(const LocalModel& model, Real time) {
   }
   bodies_ = std::move(bodies);
   model_time_ = time;
+  blend_start_ = last_advance_;
+  blend_begins_ = true;
   has_model_ = true;
 }
 
+Real ExtrapolatedSurface::ahead(Real time) const {
+  return std::clamp(time - model_time_, -kMaxExtrapolation, kMaxExtrapolation);
+}
+
 HapticSurface ExtrapolatedSurface::advance(Real time) {
-  const Real ahead = std::clamp(time - model_time_, -kMaxExtrapolation, kMaxExtrapolation);
+  const Real ahead_now = ahead(time);
+  // the share of the difference at the blend's start still shown: 1 then, 0 after kModelBlend
+  const Real blend =
+      blend_start_ ? std::clamp(1 - (time - *blend_start_) / kModelBlend, Real(0), Real(1)) : 0;
   HapticSurface surface;
   surface.step = ++ticks_;
   surface.alpha = 1;
@@ -67,11 +76,19 @@ HapticSurface ExtrapolatedSurface::advance(Real time) {
     // what this slot held three ticks ago is not there now unless the model says so
     for (const std::uint32_t v : body->written[next]) state[v] = Vec3::Constant(kNaN);
     std::vector<Vec3>& from = body->ring[body->turn];
+    if (blend_begins_) {
+      body->correction.assign(body->vertices.size(), Vec3::Zero());
+      for (std::size_t i = 0; blend_start_ && i < body->vertices.size(); ++i) {
+        const Vec3& shown = from[body->vertices[i]];
+        const Vec3 then = body->positions[i] + ahead(*blend_start_) * body->velocities[i];
+        if (shown.allFinite()) body->correction[i] = shown - then;
+      }
+    }
     // only the model's vertices move: the rest are not there, before or now
     Real largest_sq = 0;
     for (std::size_t i = 0; i < body->vertices.size(); ++i) {
       const std::uint32_t v = body->vertices[i];
-      state[v] = body->positions[i] + ahead * body->velocities[i];
+      state[v] = body->positions[i] + ahead_now * body->velocities[i] + blend * body->correction[i];
       if (!from[v].allFinite()) {
         // new in this model: it was where it is now, so that its triangles are there at once
         // (a state in between would not be finite) and did not move
@@ -87,6 +104,8 @@ HapticSurface ExtrapolatedSurface::advance(Real time) {
     surface.bodies.push_back(HapticBody{body->body_id, body->triangles, from, state, body->normals,
                                         body->normals, body->query.get(), body->motion});
   }
+  blend_begins_ = false;
+  last_advance_ = time;
   // the bodies, with their arrays and queries, live while the surface is kept
   surface.storage = std::make_shared<const std::vector<std::shared_ptr<Body>>>(bodies_);
   return surface;

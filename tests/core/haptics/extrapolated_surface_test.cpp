@@ -1,8 +1,10 @@
 // The local model (issue 26): what the server cuts near a proxy, and the client's surface made
 // from it, against the server's own rendering of the same moving sheet. A fresh model gives the
 // same forces as the server; a sheet moving at constant velocity is extrapolated exactly, so
-// one model renders what the server renders long after; the passivity rule's stiffness.
+// one model renders what the server renders long after; a model that differs from the surface
+// shown takes over by a blend; the passivity rule's stiffness.
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -231,6 +233,29 @@ TEST(ExtrapolatedSurface, TrianglesLeftOutOfANewModelAreNotThere) {
     EXPECT_FALSE(listed.empty());
     for (const std::uint32_t t : listed) {
       for (const std::uint32_t v : sheet.triangles[t]) EXPECT_LT(truth[v].x(), 0);
+    }
+  }
+}
+
+TEST(ExtrapolatedSurface, ANewModelTakesOverFromTheSurfaceShownByEqualSharesOverTheBlend) {
+  // a still sheet at z = 0 shown for 5 ticks, then a model of it 3 cm back: the surface does not
+  // jump there but goes by equal steps of 3 cm × 1 ms / kModelBlend, and stays there after
+  MovingSheet sheet(Vec3::Zero());
+  const Real tick = 0.001;
+  ExtrapolatedSurface local;
+  local.take(cut_local_model(sheet.surface(0, 0.01), 0.01, Vec3::Zero(), 0.1, 10'000), 0);
+  for (int k = 0; k <= 5; ++k) local.advance(k * tick);
+  LocalModel back = cut_local_model(sheet.surface(0, 0.01), 0.01, Vec3::Zero(), 0.1, 10'000);
+  for (Vec3& p : back.bodies[0].positions) p.z() -= 0.03;
+  local.take(back, 5 * tick);
+  const int blend_ticks = static_cast<int>(std::lround(kModelBlend / tick));
+  for (int k = 6; k <= 5 + blend_ticks + 5; ++k) {
+    const HapticSurface at = local.advance(k * tick);
+    const Real gone = std::min(1.0, (k - 5) * tick / kModelBlend);  // of the difference
+    for (const std::uint32_t v : back.bodies[0].vertex_ids) {
+      const Vec3 p = at.vertex(at.bodies[0], v);
+      EXPECT_NEAR(p.z(), -0.03 * gone, 1e-12) << "vertex " << v << " at tick " << k;
+      EXPECT_NEAR(p.x(), sheet.positions(0)[v].x(), 1e-12);
     }
   }
 }
