@@ -26,8 +26,9 @@ SceneEvent LiveScene::event(SceneEvent::Kind kind, ClientId by) const {
 }
 
 void LiveScene::publish() {
-  auto snapshot = make_snapshot(scene.world, latest_.load().get(),
-                                local_models_.load(std::memory_order_relaxed));
+  auto snapshot =
+      make_snapshot(scene.world, latest_.load().get(),
+                    local_models_.load(std::memory_order_relaxed) ? &compliance_ : nullptr);
   snapshot->version = ++published_;
   latest_.store(std::move(snapshot));
 }

@@ -49,7 +49,8 @@ class LiveScene {
   void publish();
   /// A local-model proxy renders in the scene: its snapshots carry each body's point compliance
   /// from now on (the bodies' stiffness for the local models; two sparse factorizations per body
-  /// every kComplianceRefresh, which a scene no remote device touches does not pay). Any thread.
+  /// every kComplianceRefresh on a thread of their own, which a scene no remote device touches
+  /// does not pay). Any thread.
   void serve_local_models() { local_models_.store(true, std::memory_order_relaxed); }
   /// Publishes a snapshot and a catalog after bodies came or went.
   void publish_bodies();
@@ -67,6 +68,8 @@ class LiveScene {
   Published<SceneSnapshot> latest_;
   std::uint64_t published_ = 0;
   std::atomic<bool> local_models_{false};
+  /// started by the first snapshot that needs it, on the physics thread (whose nice it takes)
+  ComplianceWorker compliance_{ComplianceWorker::Mode::kThread};
   Published<BodyCatalog> catalog_;
   /// the owner of each body, by id; published through catalog_
   std::vector<std::pair<BodyId, ClientId>> owners_;

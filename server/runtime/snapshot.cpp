@@ -26,9 +26,10 @@ SharedTriangles solid_surface(const SolidBody& body, const SharedTriangles& prev
 
 /// The most nodes a body's point compliance is found for: its two sparse factorizations took
 /// 33 ms for the default curtain's 400 particles, 386 ms for 1,600 and 1.07 s for the 10,000 of
-/// scenes/service_bench.json (2 cores, load 4), every kComplianceRefresh on the physics thread;
-/// a larger body keeps the fit to the pushes alone (local_model_stiffness) until this is done
-/// off that thread or over the nodes near the proxy only.
+/// scenes/service_bench.json (2 cores, load 4), every kComplianceRefresh; off the physics thread
+/// (ComplianceWorker) that is the age of the stiffness a local model carries, and a larger
+/// body keeps the fit to the pushes alone (local_model_stiffness) until it is found over the
+/// nodes near the proxy only.
 constexpr std::size_t kMaxComplianceNodes = 1000;
 
 /// Gives `out` the point compliance of `before` (the same body's previous snapshot) while it is
@@ -45,10 +46,33 @@ bool share_compliance(const BodySnapshot* before, Real time, BodySnapshot& out) 
   return true;
 }
 
+/// Gives `out`, body `id` of `nodes` nodes at simulated time `time`, the latest point
+/// compliance `worker` found for it, after asking for a new one from `problem()` when that is
+/// older than kComplianceRefresh and none is on its way (threaded, `out` keeps the older one
+/// meanwhile; before the first is found, none).
+template <class MakeProblem>
+void find_compliance(ComplianceWorker& worker, BodyId id, Real time, std::size_t nodes,
+                     const MakeProblem& problem, BodySnapshot& out) {
+  if (!worker.busy(id)) {
+    const std::optional<FoundCompliance> latest = worker.latest(id);
+    if (!latest || latest->nodes != nodes ||
+        !(std::abs(time - latest->time) < kComplianceRefresh)) {
+      if (std::optional<ComplianceProblem> asked = problem()) {
+        worker.request(id, time, std::move(*asked));
+      }
+    }
+  }
+  const std::optional<FoundCompliance> found = worker.latest(id);
+  if (!found || found->nodes != nodes) return;
+  out.compliance = found->at_rest;
+  out.prompt_compliance = found->prompt;
+  out.compliance_time = found->time;
+}
+
 }  // namespace
 
 std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnapshot* previous,
-                                             bool with_compliance) {
+                                             ComplianceWorker* compliance) {
   auto snapshot = std::make_shared<SceneSnapshot>();
   snapshot->step = world.step_count();
   snapshot->sim_time = world.time();
@@ -65,11 +89,12 @@ std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnap
       out.surface = SharedTriangles(body.shared_model(), &body.model().triangles);
       out.cloth = body.shared_model();
       out.positions = body.state().x;
-      if (with_compliance && body.model().particle_count() <= kMaxComplianceNodes &&
+      const std::size_t nodes = body.model().particle_count();
+      if (compliance && nodes <= kMaxComplianceNodes &&
           !share_compliance(previous ? previous->find(id, at) : nullptr, world.time(), out)) {
-        out.compliance = point_compliance(body);
-        out.prompt_compliance = point_compliance(body, kComplianceHorizon);
-        out.compliance_time = world.time();
+        find_compliance(
+            *compliance, id, world.time(), nodes,
+            [&] { return std::optional(compliance_problem(body)); }, out);
       }
     } else {
       const SolidBody& body = world.solids().bodies()[ref.index];
@@ -78,11 +103,11 @@ std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnap
       out.surface = solid_surface(body, before ? before->surface : nullptr, out.positions);
       out.solid = BodySnapshot::SolidShape{body.shared_rest(), body.shared_embedded_surface(), {}};
       if (out.solid->embedded) out.solid->nodes = body.positions();
-      if (with_compliance && body.node_count() <= kMaxComplianceNodes &&
+      if (compliance && body.node_count() <= kMaxComplianceNodes &&
           !share_compliance(before, world.time(), out)) {
-        out.compliance = point_compliance(body, world.colliders());
-        out.prompt_compliance = point_compliance(body, world.colliders(), kComplianceHorizon);
-        out.compliance_time = world.time();
+        find_compliance(
+            *compliance, id, world.time(), body.node_count(),
+            [&] { return compliance_problem(body, world.colliders()); }, out);
       }
     }
     compute_vertex_normals(out.positions, out.triangles(), out.normals);

@@ -10,6 +10,7 @@
 
 #include "core/math/point_compliance.hpp"
 #include "core/world/world.hpp"
+#include "runtime/compliance_worker.hpp"
 
 namespace felt {
 
@@ -34,7 +35,8 @@ struct BodySnapshot {
   std::optional<SolidShape> solid;  ///< empty for a cloth
   /// How stiff the body is at its points (point_compliance; over its nodes: a cloth's particles,
   /// a solid's lattice nodes): at rest (`compliance`) and under a push held for
-  /// kComplianceHorizon (`prompt_compliance`), found at simulated time `compliance_time` and
+  /// kComplianceHorizon (`prompt_compliance`), found from its state at simulated time
+  /// `compliance_time` and
   /// shared by the snapshots after it until found again (kComplianceRefresh); unknown in a
   /// snapshot made without it (make_snapshot).
   PointCompliance compliance;
@@ -65,17 +67,13 @@ struct SceneSnapshot {
 /// any body's with its constants, its pins and what it rests on; two sparse factorizations per
 /// body this often.
 inline constexpr Real kComplianceRefresh = 0.05;
-/// s: how long a push is held for BodySnapshot::prompt_compliance: the shortest round trip at
-/// which a local model's surface gives under the device's push before the server shows it
-/// (runtime/local_model_stiffness); a point whose give over it is far from its static give is
-/// answering by its inertia.
-inline constexpr Real kComplianceHorizon = 0.05;
 
 /// Copies what clients see of `world` now, sharing the surfaces of `previous` (the last
-/// snapshot of the same world, or null); with `with_compliance` also each body's point compliance
-/// (shared from `previous` while recent), for local models; without, every body's is unknown.
+/// snapshot of the same world, or null); with a `compliance` worker also each body's point
+/// compliance for local models (shared from `previous` while recent, else the latest the worker
+/// found, asking it for a new one); without, every body's is unknown.
 std::shared_ptr<SceneSnapshot> make_snapshot(const World& world,
                                              const SceneSnapshot* previous = nullptr,
-                                             bool with_compliance = false);
+                                             ComplianceWorker* compliance = nullptr);
 
 }  // namespace felt

@@ -88,8 +88,8 @@ class SimulatedServer {
         step_(nanoseconds(scene_.world.settings().time_step)),
         proxy_(1, scene_.haptics) {
     if (c.rendering == Rendering::kLocalModel) proxy_.enable_local_model({c.model_radius, 0});
-    local_models_ = c.rendering == Rendering::kLocalModel;
-    snapshot_ = make_snapshot(scene_.world, nullptr, local_models_);
+    if (c.rendering == Rendering::kLocalModel) compliance_.emplace(ComplianceWorker::Mode::kInline);
+    snapshot_ = make_snapshot(scene_.world, nullptr, compliance());
     frame_ = make_haptic_frame(snapshot_, nullptr, nullptr, scene_.haptic_structure, at(0));
   }
 
@@ -102,7 +102,7 @@ class SimulatedServer {
     scene_.world.step();
     stepped_to_ += step_;
     const std::uint64_t version = snapshot_->version + 1;
-    snapshot_ = make_snapshot(scene_.world, snapshot_.get(), local_models_);
+    snapshot_ = make_snapshot(scene_.world, snapshot_.get(), compliance());
     snapshot_->version = version;  // a new publication, as LiveScene::publish numbers them
     frame_ = make_haptic_frame(snapshot_, frame_.get(), nullptr, scene_.haptic_structure,
                                at(stepped_to_));
@@ -131,11 +131,15 @@ class SimulatedServer {
   }
 
  private:
+  ComplianceWorker* compliance() { return compliance_ ? &*compliance_ : nullptr; }
+
   Scene scene_;
   Nanoseconds step_;
   Nanoseconds stepped_to_ = 0;
   HapticProxy proxy_;
-  bool local_models_ = false;  ///< snapshots carry point compliance, as feltd's do for them
+  /// snapshots carry point compliance, as feltd's do for local models: found inline, so that a
+  /// run repeats bit for bit (feltd finds it on a thread of its own, a few steps later)
+  std::optional<ComplianceWorker> compliance_;
   ReactionAccumulator reactions_;
   std::shared_ptr<SceneSnapshot> snapshot_;
   std::shared_ptr<HapticFrame> frame_;

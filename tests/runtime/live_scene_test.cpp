@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/cloth/cloth_point_compliance.hpp"
+
 #include "runner_fixtures.hpp"
 
 namespace felt {
@@ -20,6 +22,39 @@ TEST(LiveScene, PublishesVersionedSnapshotsThatKeepWhatTheyShowed) {
   EXPECT_EQ(second->step, 1u);
   EXPECT_EQ(first->step, 0u);
   EXPECT_NE(second->bodies[0].positions, first->bodies[0].positions);
+}
+
+TEST(LiveScene, PointComplianceIsFoundOnAThreadOfItsOwnAndKeptUntilItIsOld) {
+  ManualClock clock;
+  LiveScene live(flat_cloth_scene(Vec3(0, -9.81, 0)), 0, clock);
+  EXPECT_FALSE(live.latest()->bodies[0].compliance_time);  // nobody asked for it
+  for (int k = 0; k < 200; ++k) live.scene.world.step();   // sagging: its springs in tension
+  live.serve_local_models();
+  const Real asked_at = live.scene.world.time();
+  const auto found_at = [&](Real time) {
+    return wait_for([&] {
+      live.publish();  // each publication looks for what the thread found
+      return live.latest()->bodies[0].compliance_time == time;
+    });
+  };
+  ASSERT_TRUE(found_at(asked_at));
+  // what the thread found is the body's own compliance, as found on this thread
+  const BodySnapshot& sheet = live.latest()->bodies[0];
+  const ClothBody& cloth = live.scene.world.cloths()[0];
+  const std::vector<WeightedNode> middle{{60, 1}};
+  const Real at_rest = point_compliance(cloth).stiffness(middle, Vec3::UnitY());
+  EXPECT_GT(at_rest, 0);
+  EXPECT_EQ(sheet.compliance.stiffness(middle, Vec3::UnitY()), at_rest);
+  EXPECT_EQ(sheet.prompt_compliance.stiffness(middle, Vec3::UnitY()),
+            point_compliance(cloth, kComplianceHorizon).stiffness(middle, Vec3::UnitY()));
+  // kept while recent, found again once older than kComplianceRefresh
+  const int refresh_steps = static_cast<int>(kComplianceRefresh / 1e-3);
+  for (int k = 0; k < refresh_steps / 2; ++k) live.scene.world.step();
+  live.publish();
+  EXPECT_EQ(live.latest()->bodies[0].compliance_time, asked_at);
+  for (int k = 0; k < refresh_steps; ++k) live.scene.world.step();
+  const Real asked_again = live.scene.world.time();
+  EXPECT_TRUE(found_at(asked_again));
 }
 
 TEST(LiveScene, TheCatalogNamesEachBodysOwnerOncePublished) {

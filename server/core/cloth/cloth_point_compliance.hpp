@@ -10,9 +10,15 @@
 
 namespace felt {
 
+/// What `body`'s point compliance is factored from: the Jacobian of its springs and anchors at
+/// its positions now, its pins held, its particles' masses.
+ComplianceProblem compliance_problem(const ClothBody& body);
+
 /// `body` at its positions now, at rest or over `horizon` (s, PointCompliance::factor); unknown
 /// at rest when its springs leave a way to move that nothing resists (slack, or no pin or anchor
 /// to hold it).
-PointCompliance point_compliance(const ClothBody& body, Real horizon = 0);
+inline PointCompliance point_compliance(const ClothBody& body, Real horizon = 0) {
+  return PointCompliance::factor(compliance_problem(body), horizon);
+}
 
 }  // namespace felt

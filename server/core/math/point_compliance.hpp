@@ -31,6 +31,15 @@ struct WeightedNode {
   Real weight = 1;
 };
 
+/// What PointCompliance::factor needs of a body, copied out of it: its stiffness matrix K
+/// (3n × 3n), the nodes held and each node's mass; another thread can factor it while the body
+/// steps on.
+struct ComplianceProblem {
+  Eigen::SparseMatrix<Real> stiffness;
+  std::vector<bool> held;
+  std::vector<Real> mass;
+};
+
 class PointCompliance {
  public:
   /// Unknown: every stiffness() is 0.
@@ -42,6 +51,10 @@ class PointCompliance {
   /// free body, or a slack cloth, at rest can move without any force resisting).
   static PointCompliance factor(const Eigen::SparseMatrix<Real>& stiffness, std::vector<bool> held,
                                 std::span<const Real> mass = {}, Real horizon = 0);
+  /// The same, of `problem`.
+  static PointCompliance factor(const ComplianceProblem& problem, Real horizon = 0) {
+    return factor(problem.stiffness, problem.held, problem.mass, horizon);
+  }
 
   /// N/m along unit `direction` of a load spread over `load` (weights summing to 1): 1/(bᵀ K⁻¹ b);
   /// 0 while unknown, for a load on no free node, or on a node out of range.

@@ -4,21 +4,21 @@
 
 namespace felt {
 
-PointCompliance point_compliance(const SolidBody& body, std::span<const Collider> colliders,
-                                 Real horizon) {
+std::optional<ComplianceProblem> compliance_problem(const SolidBody& body,
+                                                    std::span<const Collider> colliders) {
   const Eigen::SparseMatrix<Real>* stiffness = body.rest_stiffness();
-  if (!stiffness) return {};
+  if (!stiffness) return std::nullopt;
   const std::vector<Vec3>& x = body.positions();
-  std::vector<bool> held(x.size());
-  std::vector<Real> mass(x.size());
+  ComplianceProblem problem{*stiffness, std::vector<bool>(x.size()), std::vector<Real>(x.size())};
   for (std::uint32_t n = 0; n < x.size(); ++n) {
-    held[n] = body.inv_mass()[n] == 0;
+    problem.held[n] = body.inv_mass()[n] == 0;
     for (const Collider& collider : colliders) {
-      held[n] = held[n] || signed_distance(collider, x[n]).distance <= kSupportDistance;
+      problem.held[n] =
+          problem.held[n] || signed_distance(collider, x[n]).distance <= kSupportDistance;
     }
-    mass[n] = body.mass(n);
+    problem.mass[n] = body.mass(n);
   }
-  return PointCompliance::factor(*stiffness, std::move(held), mass, horizon);
+  return problem;
 }
 
 }  // namespace felt
