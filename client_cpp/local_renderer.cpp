@@ -1,5 +1,6 @@
 #include "local_renderer.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/haptics/passive_stiffness.hpp"
@@ -60,10 +61,24 @@ LocalForce LocalRenderer::tick(const felt::Vec3& device, double time) {
   felt::ProxySettings settings = settings_;
   settings.stiffness = felt::passive_stiffness(settings_.stiffness, options_.device_damping,
                                                options_.servo_period, delay_, touched_stiffness);
-  const double dt = god_ ? time - last_time_ : 0;
+  const double since = god_ ? time - last_time_ : 0;
   if (!god_) god_.emplace(settings, device);
   god_->set_settings(settings);
+  // a tick that comes late (the device loop descheduled for 4 ms on a loaded machine) renders
+  // the ticks it missed first, the device moving linearly between the two: in one step the
+  // surface would move that many ticks' worth (a blend's share of centimetres), more than the
+  // god-object's carry follows on a turning triangle
+  const double periods = options_.servo_period > 0 ? since / options_.servo_period : 1;
+  const int steps =
+      periods > 1.5 ? static_cast<int>(std::min<double>(std::round(periods), kMaxCatchUpTicks)) : 1;
+  const double dt = since / steps;
+  for (int k = 1; k < steps; ++k) {
+    const double s = static_cast<double>(k) / steps;
+    god_->update(surface_.advance(last_time_ + s * since),
+                 last_device_ + s * (device - last_device_), dt);
+  }
   last_time_ = time;
+  last_device_ = device;
   const felt::HapticContact contact = god_->update(surface_.advance(time), device, dt);
   last_.contact = felt::yielding_contact(contact, model_push_, settings.stiffness,
                                          surface_stiffness(contact.body_id));

@@ -20,11 +20,15 @@
 
 namespace felt::client {
 
+/// The most ticks a late tick renders (the ones it missed and its own): a loop stalled longer
+/// moves on in larger steps.
+inline constexpr int kMaxCatchUpTicks = 50;
+
 struct LocalRendererOptions {
   /// N·s/m: the damping of the device and the hand holding it that the passivity rule counts
   /// on (passive_stiffness)
   double device_damping = 20;
-  double servo_period = 1e-3;  ///< s: how often tick() is called
+  double servo_period = 1e-3;  ///< s: how often tick() is called (a late call catches up)
 };
 
 /// What one tick rendered.
@@ -53,8 +57,9 @@ class LocalRenderer {
   LocalRendererOptions options_;
   felt::ExtrapolatedSurface surface_;
   std::optional<felt::GodObject> god_;
-  double delay_ = 0;      ///< s: the last round trip
-  double last_time_ = 0;  ///< of the last tick
+  double delay_ = 0;                             ///< s: the last round trip
+  double last_time_ = 0;                         ///< of the last tick
+  felt::Vec3 last_device_ = felt::Vec3::Zero();  ///< at the last tick
   LocalForce last_;
   felt::Vec3 model_push_ = felt::Vec3::Zero();  ///< the latest model's push
   /// per body of the latest model: its surface's stiffness (N/m, 0: unknown)

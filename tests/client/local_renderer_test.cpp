@@ -2,7 +2,8 @@
 // patch mounted on a spring k_o, pressed by the proxy's spring k_p. In series the device feels
 // k_eff = k_p k_o / (k_p + k_o) times its depth below the unpushed surface, whatever push the
 // model in hand was cut under (a fresh one, a stale one, none); without the surface's stiffness
-// the renderer takes the copy as rigid and feels k_p times the depth below the copy.
+// the renderer takes the copy as rigid and feels k_p times the depth below the copy. A late tick
+// catches up with the ticks it missed.
 
 #include "local_renderer.hpp"
 
@@ -94,6 +95,35 @@ TEST(LocalRenderer, UpstreamCarriesTheProxyWhereTheSurfaceGaveTo) {
   ASSERT_TRUE(up.in_contact());
   // the server pushes the body with stiffness (proxy - device): the force the device felt
   EXPECT_NEAR(up.stiffness() * (up.proxy().z() - device.z()), k_eff * 0.01, 1e-9);
+}
+
+TEST(LocalRenderer, ALateTickRendersTheTicksItMissedFirst) {
+  // the patch rises at 0.5 m/s into a device sliding down and sideways; one renderer ticks every
+  // millisecond, the other misses four ticks: its late tick is the first one's, to rounding
+  felt::LocalModel rising = patch(0, 0, 0);
+  rising.bodies[0].velocities.assign(4, felt::Vec3(0, 0, 0.5));
+  const auto device_at = [](int k) { return felt::Vec3(0.002 * k, 0, kRadius + 0.02 - 0.001 * k); };
+  // the force follows the depth at most 0.3 N per tick (0.6 N of depth a tick here), and a
+  // sliding proxy's friction depends on the path it took: a late tick taken as one tick would
+  // render neither
+  felt::v1::ProxySettings ramped = settings();
+  ramped.set_max_force_change(0.3);
+  ramped.set_static_friction(0.4);
+  ramped.set_dynamic_friction(0.3);
+  LocalRenderer every(ramped, {20, 1e-3});
+  LocalRenderer late(ramped, {20, 1e-3});
+  every.take(rising, 0, 0);
+  late.take(rising, 0, 0);
+  int touching = 0;
+  for (int k = 0; k <= 30; ++k) {
+    const LocalForce expected = every.tick(device_at(k), k * 1e-3);
+    if (k > 10 && k < 15) continue;  // the late renderer's loop stalled
+    const LocalForce got = late.tick(device_at(k), k * 1e-3);
+    EXPECT_LT((got.contact.force - expected.contact.force).norm(), 1e-9) << "tick " << k;
+    EXPECT_LT((got.contact.proxy - expected.contact.proxy).norm(), 1e-12) << "tick " << k;
+    touching += expected.contact.in_contact ? 1 : 0;
+  }
+  EXPECT_GT(touching, 10);
 }
 
 }  // namespace

@@ -79,9 +79,16 @@ HapticSurface ExtrapolatedSurface::advance(Real time) {
     if (blend_begins_) {
       body->correction.assign(body->vertices.size(), Vec3::Zero());
       for (std::size_t i = 0; blend_start_ && i < body->vertices.size(); ++i) {
-        const Vec3& shown = from[body->vertices[i]];
-        const Vec3 then = body->positions[i] + ahead(*blend_start_) * body->velocities[i];
-        if (shown.allFinite()) body->correction[i] = shown - then;
+        Vec3& shown = from[body->vertices[i]];
+        if (!shown.allFinite()) {
+          // new in this model: it was where the server saw it, and moves on from there. Put
+          // where it is extrapolated to, a surface swinging fast toward a free proxy (a curtain
+          // at 5 m/s, 28 ms ahead) would appear on its far side with nothing seen to pass it
+          shown = body->positions[i];
+          body->written[body->turn].push_back(body->vertices[i]);
+        }
+        body->correction[i] =
+            shown - (body->positions[i] + ahead(*blend_start_) * body->velocities[i]);
       }
     }
     // only the model's vertices move: the rest are not there, before or now
@@ -90,7 +97,7 @@ HapticSurface ExtrapolatedSurface::advance(Real time) {
       const std::uint32_t v = body->vertices[i];
       state[v] = body->positions[i] + ahead_now * body->velocities[i] + blend * body->correction[i];
       if (!from[v].allFinite()) {
-        // new in this model: it was where it is now, so that its triangles are there at once
+        // in the first model: it was where it is now, so that its triangles are there at once
         // (a state in between would not be finite) and did not move
         from[v] = state[v];
         body->written[body->turn].push_back(v);

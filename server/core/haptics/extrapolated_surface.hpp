@@ -3,8 +3,9 @@
 // (local_model.hpp): each model's vertices moved on by their velocities to the time of each
 // haptic tick, for at most kMaxExtrapolation. Each tick's surface runs from the previous
 // tick's state to this one's, on one chain per body (SurfaceMotion), so the god-object tests
-// its carried leg against that motion, including the jump to a newly arrived model; a vertex new
-// in a model was where it is from the previous tick on (it does not move in from nowhere). A body
+// its carried leg against that motion, including the blend to a newly arrived model (below); a
+// vertex new in a model starts where the model has it, at the server's time, and moves on to
+// its extrapolation over the blend, so a triangle moving in is seen to move. A body
 // keeps its vertex and triangle ids (the server's) in arrays of its whole surface's size:
 // vertices not in the model are not finite and triangles not in it have the spare
 // non-finite vertex for corners, so the god-object finds them "not there"; only the model's
@@ -62,8 +63,8 @@ class ExtrapolatedSurface {
     std::vector<Vec3> positions;          ///< per vertex of the model, at the model's time
     std::vector<Vec3> velocities;
     std::vector<Vec3> normals;  ///< the whole surface's, zero where unknown
-    /// per vertex of the model: where the surface was shown when the blend began, less where
-    /// the model puts it then (zero for a vertex new in the model)
+    /// per vertex of the model: where the surface was shown when the blend began (a vertex new
+    /// in the model: where the model has it), less where the model's extrapolation puts it then
     std::vector<Vec3> correction;
     std::array<std::vector<Vec3>, 3> ring;  ///< the last states handed out, and the next
     std::array<std::vector<std::uint32_t>, 3> written;  ///< the vertices set in each
