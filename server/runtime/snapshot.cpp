@@ -53,16 +53,15 @@ bool share_compliance(const BodySnapshot* before, Real time, BodySnapshot& out) 
 template <class MakeProblem>
 void find_compliance(ComplianceWorker& worker, BodyId id, Real time, std::size_t nodes,
                      const MakeProblem& problem, BodySnapshot& out) {
-  if (!worker.busy(id)) {
-    const std::optional<FoundCompliance> latest = worker.latest(id);
-    if (!latest || latest->nodes != nodes ||
-        !(std::abs(time - latest->time) < kComplianceRefresh)) {
-      if (std::optional<ComplianceProblem> asked = problem()) {
-        worker.request(id, time, std::move(*asked));
-      }
+  std::optional<FoundCompliance> found = worker.latest(id);
+  const bool recent =
+      found && found->nodes == nodes && std::abs(time - found->time) < kComplianceRefresh;
+  if (!recent && !worker.busy(id)) {
+    if (std::optional<ComplianceProblem> asked = problem()) {
+      worker.request(id, time, std::move(*asked));
+      found = worker.latest(id);  // inline, already the new one
     }
   }
-  const std::optional<FoundCompliance> found = worker.latest(id);
   if (!found || found->nodes != nodes) return;
   out.compliance = found->at_rest;
   out.prompt_compliance = found->prompt;

@@ -67,6 +67,7 @@ HapticSurface ExtrapolatedSurface::advance(Real time) {
   // the share of the difference at the blend's start still shown: 1 then, 0 after kModelBlend
   const Real blend =
       blend_start_ ? std::clamp(1 - (time - *blend_start_) / kModelBlend, Real(0), Real(1)) : 0;
+  const Real ahead_then = blend_start_ ? ahead(*blend_start_) : 0;  // at the blend's start
   HapticSurface surface;
   surface.step = ++ticks_;
   surface.alpha = 1;
@@ -76,20 +77,17 @@ HapticSurface ExtrapolatedSurface::advance(Real time) {
     // what this slot held three ticks ago is not there now unless the model says so
     for (const std::uint32_t v : body->written[next]) state[v] = Vec3::Constant(kNaN);
     std::vector<Vec3>& from = body->ring[body->turn];
-    if (blend_begins_) {
-      body->correction.assign(body->vertices.size(), Vec3::Zero());
-      for (std::size_t i = 0; blend_start_ && i < body->vertices.size(); ++i) {
-        Vec3& shown = from[body->vertices[i]];
-        if (!shown.allFinite()) {
-          // new in this model: it was where the server saw it, and moves on from there. Put
-          // where it is extrapolated to, a surface swinging fast toward a free proxy (a curtain
-          // at 5 m/s, 28 ms ahead) would appear on its far side with nothing seen to pass it
-          shown = body->positions[i];
-          body->written[body->turn].push_back(body->vertices[i]);
-        }
-        body->correction[i] =
-            shown - (body->positions[i] + ahead(*blend_start_) * body->velocities[i]);
+    if (blend_begins_) body->correction.assign(body->vertices.size(), Vec3::Zero());
+    for (std::size_t i = 0; blend_begins_ && blend_start_ && i < body->vertices.size(); ++i) {
+      Vec3& shown = from[body->vertices[i]];
+      if (!shown.allFinite()) {
+        // new in this model: it was where the server saw it, and moves on from there. Put
+        // where it is extrapolated to, a surface swinging fast toward a free proxy (a curtain at
+        // 5 m/s, 28 ms ahead) would appear on its far side with nothing seen to pass it
+        shown = body->positions[i];
+        body->written[body->turn].push_back(body->vertices[i]);
       }
+      body->correction[i] = shown - (body->positions[i] + ahead_then * body->velocities[i]);
     }
     // only the model's vertices move: the rest are not there, before or now
     Real largest_sq = 0;
