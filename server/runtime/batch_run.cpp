@@ -64,7 +64,7 @@ BodyRunStats solid_stats(const SolidBody& body) {
   stats.edges = body.topology().edges.size();
   stats.triangles = body.topology().surface.size();
   stats.tets = body.rest().tets.size();
-  if (const EmbeddedSurface* fine = body.embedded_surface()) {
+  if (const EmbeddedSurface* fine = body.embedded_surface(); fine && !fine->lattice_own) {
     stats.fine_vertices = fine->vertex_count();
     stats.fine_triangles = fine->triangles.size();
   }

@@ -201,9 +201,10 @@ SolidBody read_solid(const ObjectReader& body, std::size_t index,
   material.crease_angle = crease * std::numbers::pi / 180;
   SolidBody solid(body.name("name", "solid" + std::to_string(index)), std::move(shape.lattice),
                   material);
-  if (shape.surface) {
-    solid.set_embedded_surface(std::make_shared<const EmbeddedSurface>(std::move(*shape.surface)));
-  }
+  // clients see the fine surface, or the lattice's own surface without its interior nodes
+  solid.set_embedded_surface(std::make_shared<const EmbeddedSurface>(
+      shape.surface ? std::move(*shape.surface)
+                    : embed_lattice_surface(solid.rest(), solid.topology().surface)));
   if (body.has("pin")) {
     const json& pins = body.at("pin");
     if (!pins.is_array()) fail(body.path_of("pin"), "must be a list of node indices");

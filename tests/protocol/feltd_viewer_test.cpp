@@ -169,6 +169,43 @@ TEST_F(FeltdTest, ScalarsAreASolidsVolumeChangePerVertex) {
   EXPECT_LT(smallest, -1e-3f);
 }
 
+// Issue 31, found 7: a lattice without a fine surface streamed all 1,331 of its nodes, though
+// its surface uses 602.
+TEST_F(FeltdTest, ALatticeWithoutAFineSurfaceSendsItsSurfaceNodesOnly) {
+  auto client = greeted("viewer");
+  // a 1 m box of 10 x 10 x 10 cells, weightless and touching nothing: it stays at rest
+  const v1::SceneLoaded loaded = client->load_scene_json(R"({"time_step": 0.01,
+    "gravity": [0, 0, 0],
+    "bodies": [{"name": "block", "type": "solid",
+                "lattice": {"cells": [10, 10, 10], "size": [1, 1, 1]}, "node_mass": 0.05,
+                "mass_spring": {"distance_stiffness": 60, "volume_stiffness": 20}}]})");
+  ASSERT_EQ(loaded.bodies_size(), 1);
+  EXPECT_EQ(loaded.bodies(0).nodes(), 1331u);
+  // 11^3 nodes less the 9^3 inside
+  EXPECT_EQ(loaded.bodies(0).particles(), 602u);
+  EXPECT_EQ(loaded.bodies(0).triangles(), 6u * 10 * 10 * 2);
+  client->subscribe_frames(60);
+  const auto frame = client->next_frame(scaled(5s));
+  ASSERT_TRUE(frame);
+  const v1::BodyFrame& block = frame->bodies(0);
+  ASSERT_EQ(block.vertex_count(), 602u);
+  ASSERT_EQ(block.positions_size(), 3 * 602);
+  ASSERT_EQ(block.triangles_size(), 3 * 1200);
+  std::vector<int> uses(602, 0);
+  for (std::uint32_t v : block.triangles()) {
+    ASSERT_LT(v, 602u);
+    ++uses[v];
+  }
+  for (std::size_t v = 0; v < uses.size(); ++v) {
+    EXPECT_GT(uses[v], 0) << "vertex " << v << " is on no triangle";
+    // every vertex is on a face of the box: some coordinate at +-0.5 m
+    float outermost = 0;
+    for (int a = 0; a < 3; ++a)
+      outermost = std::max(outermost, std::abs(block.positions(3 * v + a)));
+    EXPECT_NEAR(outermost, 0.5f, 1e-5f) << "vertex " << v;
+  }
+}
+
 TEST_F(FeltdTest, StatsNameEachBodysIntegratorAndStrain) {
   auto client = greeted("steerer");
   v1::SetBodyParameters set;

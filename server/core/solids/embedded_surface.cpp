@@ -227,4 +227,33 @@ EmbeddedSurface embed_surface(const TetMesh& lattice, const TriangleMesh& fine) 
   return surface;
 }
 
+EmbeddedSurface embed_lattice_surface(const TetMesh& lattice, std::span<const Triangle> surface) {
+  constexpr std::uint32_t kInterior = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> vertex_of(lattice.nodes.size(), kInterior);
+  for (const Triangle& face : surface) {
+    for (std::uint32_t node : face) vertex_of[node] = 0;
+  }
+  std::uint32_t count = 0;
+  for (std::uint32_t& vertex : vertex_of) {
+    if (vertex != kInterior) vertex = count++;
+  }
+  EmbeddedSurface out;
+  out.lattice_own = true;
+  out.tet.assign(count, kInterior);
+  out.weights.assign(count, Vec4::Zero());
+  for (std::size_t t = 0; t < lattice.tets.size(); ++t) {
+    for (int corner = 0; corner < 4; ++corner) {
+      const std::uint32_t vertex = vertex_of[lattice.tets[t][corner]];
+      if (vertex == kInterior || out.tet[vertex] != kInterior) continue;
+      out.tet[vertex] = static_cast<std::uint32_t>(t);
+      out.weights[vertex][corner] = 1;
+    }
+  }
+  out.triangles.reserve(surface.size());
+  for (const Triangle& face : surface) {
+    out.triangles.push_back({vertex_of[face[0]], vertex_of[face[1]], vertex_of[face[2]]});
+  }
+  return out;
+}
+
 }  // namespace felt

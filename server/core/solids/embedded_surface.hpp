@@ -18,7 +18,8 @@ struct EmbeddedSurface {
   std::vector<std::uint32_t> tet;  ///< per fine vertex: the index of its tetrahedron
   std::vector<Vec4> weights;       ///< per fine vertex: barycentric coordinates in it
   std::vector<Triangle> triangles;
-  std::vector<Vec2> uv;  ///< per fine vertex, or empty
+  std::vector<Vec2> uv;      ///< per fine vertex, or empty
+  bool lattice_own = false;  ///< the lattice's own surface (embed_lattice_surface), not a finer one
 
   std::size_t vertex_count() const { return tet.size(); }
 
@@ -36,5 +37,11 @@ struct EmbeddedSurface {
 /// nearest one (its coordinates then extrapolate). The tetrahedra must be positively oriented;
 /// they are found through a uniform grid of their bounding boxes, not by trying them all.
 EmbeddedSurface embed_surface(const TetMesh& lattice, const TriangleMesh& fine);
+
+/// A lattice's own surface as an embedded one: its surface nodes only, in node order, each with
+/// weight 1 at its corner of a tetrahedron it belongs to, and `surface` (faces over node indices)
+/// numbered over them. So a solid without a fine surface shows clients its surface and not its
+/// interior nodes (an 11 × 11 × 11 box lattice: 602 vertices of its 1,331 nodes).
+EmbeddedSurface embed_lattice_surface(const TetMesh& lattice, std::span<const Triangle> surface);
 
 }  // namespace felt

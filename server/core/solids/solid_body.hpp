@@ -204,7 +204,8 @@ class SolidBody {
   Real volume() const { return total_volume(x_, rest_->tets); }
   Real rest_volume() const { return rest_volume_; }
 
-  /// How many vertices clients see: the fine surface's, or without one the nodes.
+  /// How many vertices clients see: the embedded surface's (a body read from a scene always
+  /// has one: its fine surface or the lattice's own, embed_lattice_surface), or the nodes.
   std::size_t surface_vertex_count() const {
     return embedded_ ? embedded_->vertex_count() : node_count();
   }

@@ -165,5 +165,36 @@ TEST(EmbeddedSurface, EmbedsManyVerticesInALargeLattice) {
   }
 }
 
+TEST(EmbeddedLatticeSurface, IsTheLatticesSurfaceNodesAtTheirOwnPositionsWithoutTheInterior) {
+  // 3 x 3 x 3 cells: 4^3 = 64 nodes, of which the 2^3 = 8 inside touch no face
+  TetMesh lattice = box_lattice({3, 3, 3}, Vec3(-1, 0, 2), 0.5);
+  const TetTopology topology = build_topology(lattice);
+  const EmbeddedSurface surface = embed_lattice_surface(lattice, topology.surface);
+  ASSERT_EQ(surface.vertex_count(), 56u);
+  EXPECT_TRUE(surface.lattice_own);
+  ASSERT_EQ(surface.triangles.size(), topology.surface.size());
+
+  // moved anywhere, each vertex is exactly its node, in node order
+  std::mt19937 random(7);
+  std::uniform_real_distribution<Real> jitter(-0.1, 0.1);
+  for (Vec3& x : lattice.nodes) x += Vec3(jitter(random), jitter(random), jitter(random));
+  std::vector<Vec3> positions;
+  surface.positions(lattice.nodes, lattice.tets, positions);
+  std::vector<std::uint32_t> node_of;
+  for (std::uint32_t n = 0; n < lattice.nodes.size(); ++n) {
+    if (topology.on_surface[n]) node_of.push_back(n);
+  }
+  ASSERT_EQ(node_of.size(), positions.size());
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    EXPECT_EQ(positions[v], lattice.nodes[node_of[v]]) << "vertex " << v;
+  }
+  // and the faces are the lattice's, corner for corner
+  for (std::size_t f = 0; f < surface.triangles.size(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(node_of[surface.triangles[f][c]], topology.surface[f][c]) << "face " << f;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace felt
