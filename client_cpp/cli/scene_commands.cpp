@@ -77,10 +77,11 @@ int hello(const Common& common) {
   const v1::Limits& limits = welcome.limits();
   std::printf(
       "\nlimits: %u clients, %u scenes, %u bodies and %llu particles per scene, "
-      "%u proxies, %u requests in flight, frames up to %g Hz, messages up to %llu bytes\n",
+      "%u proxies, %u requests in flight, %g requests a second, frames up to %g Hz, messages up "
+      "to %llu bytes\n",
       limits.max_clients(), limits.max_scenes(), limits.max_bodies_per_scene(),
       static_cast<unsigned long long>(limits.max_particles_per_scene()), limits.max_proxies(),
-      limits.max_requests_in_flight(), limits.max_frame_rate_hz(),
+      limits.max_requests_in_flight(), limits.max_request_rate(), limits.max_frame_rate_hz(),
       static_cast<unsigned long long>(limits.max_frame_bytes()));
   return 0;
 }

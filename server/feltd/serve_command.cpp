@@ -310,6 +310,12 @@ CLI::App* add_serve_command(CLI::App& app, ServeOptions& options) {
       ->check(CLI::Range(1, 10'000))
       ->capture_default_str();
   serve_cmd
+      ->add_option("--max-request-rate", limits.max_request_rate,
+                   "Requests read a second per client, in bursts of a tenth of a second's (a "
+                   "faster client waits, nothing is refused)")
+      ->check(CLI::Range(100.0, 10'000'000.0))
+      ->capture_default_str();
+  serve_cmd
       ->add_option("--max-frame-bytes", limits.max_inbound_frame_bytes,
                    "Largest message a client may send, in bytes")
       ->check(CLI::Range(1024, 1 << 30))

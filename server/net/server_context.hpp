@@ -31,6 +31,8 @@ struct ServerOptions {
   std::size_t max_kept_scenes_per_client = 4;
   std::size_t max_clients = 64;
   std::size_t max_requests_in_flight = 16;  ///< per client: loads, steps, saves not yet answered
+  /// per client, requests read a second (RequestRate): 16 proxies at 1 kHz with frames fit
+  double max_request_rate = 20'000;
   std::size_t max_bodies_per_scene = 256;
   std::size_t max_particles_per_scene = 250'000;  ///< in scenes clients load or build
   std::string token;                              ///< when not empty, Hello must carry it

@@ -60,7 +60,10 @@ Session::Session(std::unique_ptr<Transport> transport, ServerContext& context)
       id_(context.next_client_id.fetch_add(1)),
       outbound_(*transport_, *this, context.options.max_queued_reply_bytes),
       frames_(id_, transport_->executor(), context.frame_encoder, context.frame_bodies, outbound_),
-      hello_timer_(transport_->executor()) {}
+      hello_timer_(transport_->executor()),
+      rate_(context.options.max_request_rate, request_burst(context.options.max_request_rate),
+            RequestRate::Clock::now()),
+      rate_timer_(transport_->executor()) {}
 
 Session::~Session() {
   // a session normally leaves on its strand when its connection ends; one destroyed with the
@@ -130,6 +133,7 @@ void Session::shutdown(bool gracefully) {
   if (closed_) return;
   closed_ = true;
   hello_timer_.cancel();
+  rate_timer_.cancel();
   frames_.stop();
   outbound_.stop();
   if (gracefully) {
@@ -202,6 +206,10 @@ void Session::process() {
       post([self = shared_from_this()] { self->process(); });
       return;
     }
+    if (const auto wait = rate_.wait(RequestRate::Clock::now()); wait.count() > 0) {
+      process_after(wait);
+      return;
+    }
     const wire::DecodeResult frame = transport_->next();
     if (frame.status == wire::DecodeStatus::kNeedMore) break;
     if (frame.status == wire::DecodeStatus::kTooLarge) {
@@ -221,11 +229,25 @@ void Session::process() {
       close_after_replies();
       break;
     }
+    rate_.take();
     ++requests_;
     dispatch(*this, message);
   }
   if (closed_ || outbound_.closing()) return;
   read();
+}
+
+void Session::process_after(RequestRate::Clock::duration wait) {
+  if (!rate_logged_) {
+    rate_logged_ = true;
+    context_.log.warning(who() + " from " + transport_->peer() + " sends more than " +
+                         std::to_string(static_cast<long long>(context_.options.max_request_rate)) +
+                         " requests a second (--max-request-rate): they are read at that rate");
+  }
+  rate_timer_.expires_after(wait);
+  rate_timer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
+    if (!ec && !self->closed_) self->process();
+  });
 }
 
 void Session::send(const v1::ServerMessage& message) {

@@ -17,6 +17,7 @@
 #include "felt/v1/envelope.pb.h"
 #include "net/outbound_queue.hpp"
 #include "net/pending_reply.hpp"
+#include "net/request_rate.hpp"
 #include "net/server_context.hpp"
 #include "net/session_frames.hpp"
 #include "net/transport.hpp"
@@ -128,8 +129,11 @@ class Session final : public std::enable_shared_from_this<Session>,
   /// Closes the connection if it has not said Hello in time.
   void start_hello_deadline();
   void on_read(const boost::system::error_code& ec, std::size_t bytes);
-  /// Handles received requests, a bounded number per turn so that other sessions get theirs.
+  /// Handles received requests, a bounded number per turn so that other sessions get theirs,
+  /// and no faster than --max-request-rate.
   void process();
+  /// Handles the next requests after `wait`, the time until the rate lets one be read.
+  void process_after(RequestRate::Clock::duration wait);
   void on_scene_event(SceneId scene, const SceneEvent& event);
   /// Ends the connection: after what was written (`gracefully`), or at once.
   void shutdown(bool gracefully);
@@ -158,6 +162,9 @@ class Session final : public std::enable_shared_from_this<Session>,
   bool greeted_ = false;
   int refused_hellos_ = 0;
   boost::asio::steady_timer hello_timer_;
+  RequestRate rate_;
+  boost::asio::steady_timer rate_timer_;
+  bool rate_logged_ = false;  ///< the first wait for the rate is logged, once
   std::string client_name_;
   SceneId scene_id_ = 0;
   std::shared_ptr<SceneRunner> scene_;

@@ -46,6 +46,7 @@ void fill_limits(const ServerOptions& options, v1::Limits& out) {
   out.set_max_scenes(static_cast<std::uint32_t>(options.max_scenes));
   out.set_max_clients(static_cast<std::uint32_t>(options.max_clients));
   out.set_max_kept_scenes(static_cast<std::uint32_t>(options.max_kept_scenes_per_client));
+  out.set_max_request_rate(options.max_request_rate);
 }
 
 }  // namespace

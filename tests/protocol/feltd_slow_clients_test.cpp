@@ -240,5 +240,45 @@ TEST_F(SmallBacklog, ListingsAreCountedAsRequestsInFlight) {
   EXPECT_EQ(client->list_scenes().running_size(), 1);  // and the next one, alone, is served
 }
 
+class LowRequestRate : public FeltdTest {
+  std::vector<std::string> extra_args() const override { return {"--max-request-rate", "1000"}; }
+};
+
+// Issue 31: requests answered at once were bounded by the reply backlog alone, so a client that
+// read its replies could keep a network thread busy for as long as it pleased.
+TEST_F(LowRequestRate, AClientPastTheRateWaitsLosesNothingAndOthersAreServedMeanwhile) {
+  auto flooder = greeted("flooder");
+  auto witness = greeted("witness");
+  // 3,100 pipelined: the burst of 100 at once, then 1,000 a second, so at least 3 s
+  constexpr int kRequests = 3100;
+  std::vector<std::uint64_t> ids;
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < kRequests; ++i) {
+    v1::ClientMessage message;
+    message.mutable_get_stats();
+    ids.push_back(flooder->send(message));
+  }
+  std::chrono::steady_clock::time_point last_reply;
+  int answered = 0;
+  std::thread reader([&] {
+    while (answered < kRequests) {
+      const auto reply = flooder->receive(scaled(60s));
+      if (reply && reply->has_event()) continue;  // the witness joining
+      if (!reply || reply->request_id() != ids[answered] || !reply->has_stats()) return;
+      ++answered;
+    }
+    last_reply = std::chrono::steady_clock::now();
+  });
+  witness->stats();
+  const auto witness_answered = std::chrono::steady_clock::now();
+  reader.join();
+  ASSERT_EQ(answered, kRequests);  // every one answered, in order, none refused
+  EXPECT_GE(last_reply - start, 2.9s);
+  EXPECT_LT(witness_answered, last_reply);
+  Client curious;
+  connect(curious);
+  EXPECT_DOUBLE_EQ(curious.hello("curious").limits().max_request_rate(), 1000);
+}
+
 }  // namespace
 }  // namespace felt::test
