@@ -20,6 +20,8 @@ RequestRate::Clock::duration RequestRate::wait(Clock::time_point now) {
   return std::chrono::ceil<Clock::duration>(std::chrono::duration<double>(seconds));
 }
 
-double request_burst(double per_second) { return std::max(32.0, per_second / 10); }
+double request_burst(double per_second) {
+  return std::max(32.0, per_second / 10);
+}
 
 }  // namespace felt::net

@@ -10,7 +10,9 @@ namespace {
 using namespace std::chrono_literals;
 using Clock = RequestRate::Clock;
 
-double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+double seconds(Clock::duration d) {
+  return std::chrono::duration<double>(d).count();
+}
 
 TEST(RequestRate, LetsABurstThroughThenOneRequestPerPeriod) {
   const Clock::time_point start{};
