@@ -184,9 +184,9 @@ BatchRunStats run_batch(Scene& scene, std::uint64_t steps, const BatchHaptics& h
     if (servo) servo->before_step(world);
     const StepReport report = world.step();
     if (servo) servo->after_step(world, stats.haptics);
-    if (report.flags & kStepRescued) ++stats.rescued_steps;
-    if (report.flags & kStepUnrecoverable) ++stats.unrecoverable_steps;
-    if (report.flags & kStepOverBudget) ++stats.over_budget_steps;
+    if (report.flags.has(StepFlag::kRescued)) ++stats.rescued_steps;
+    if (report.flags.has(StepFlag::kUnrecoverable)) ++stats.unrecoverable_steps;
+    if (report.flags.has(StepFlag::kOverBudget)) ++stats.over_budget_steps;
     if (!world.cloth_system().bodies().empty()) {
       record_stages(report.cloth_profile, world.cloth_system().last_stats().substeps, stats.cloth);
     }

@@ -18,15 +18,15 @@ void add_once(std::vector<BodyId>& bodies, const std::vector<std::uint32_t>& ids
 }  // namespace
 
 void HealthEvents::count(const StepReport& report) {
-  if (report.flags & kStepRescued) {
+  if (report.flags.has(StepFlag::kRescued)) {
     ++rescued_.total;
     add_once(rescued_.bodies, report.rescued_bodies);  // every body since the last event
   }
-  if (report.flags & kStepOverBudget) {
+  if (report.flags.has(StepFlag::kOverBudget)) {
     ++over_budget_.total;
     add_once(over_budget_.bodies, report.over_budget_bodies);
   }
-  if (report.flags & kStepUnrecoverable) {
+  if (report.flags.has(StepFlag::kUnrecoverable)) {
     ++unrecoverable_.total;
     unrecoverable_.bodies = report.unrecoverable_bodies;
   }

@@ -106,8 +106,8 @@ void RunTrace::write_rows(const World& world, const StepReport& report) {
       csv_ << ',' << v->x() << ',' << v->y() << ',' << v->z();
     }
     csv_ << ',' << m.max_speed << ',' << m.max_strain << ',' << m.max_compression << ','
-         << world.step_counts(id).substeps << ',' << ((report.flags & kStepRescued) ? 1 : 0) << ','
-         << (unrecoverable ? 1 : 0) << ',' << hash << '\n';
+         << world.step_counts(id).substeps << ',' << (report.flags.has(StepFlag::kRescued) ? 1 : 0)
+         << ',' << (unrecoverable ? 1 : 0) << ',' << hash << '\n';
     ++index;
   }
 }

@@ -257,7 +257,7 @@ ClothRun run_cloth(std::string_view integrator, Real k, Real h) {
   run.steps = std::lround(kSimTime / h);
   const auto start = Clock::now();
   for (; run.steps_done < run.steps; ++run.steps_done) {
-    if (world.step().flags & kStepUnrecoverable) {
+    if (world.step().flags.has(StepFlag::kUnrecoverable)) {
       run.failed = true;
       break;
     }

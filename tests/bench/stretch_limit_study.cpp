@@ -52,8 +52,8 @@ Run run(World world) {
     seconds += std::chrono::duration<double>(Clock::now() - start).count();
     limit_seconds += report.cloth_profile[StepStage::kStretchLimit];
     ++steps;
-    if (report.flags & kStepRescued) ++r.rescued;
-    if (report.flags & kStepUnrecoverable) ++r.unrecoverable;
+    if (report.flags.has(StepFlag::kRescued)) ++r.rescued;
+    if (report.flags.has(StepFlag::kUnrecoverable)) ++r.unrecoverable;
     r.max_strain = std::max(r.max_strain, body.max_strain());
   }
   r.ms_per_step = 1e3 * seconds / static_cast<double>(steps);
@@ -189,8 +189,8 @@ void served_candidates_table() {
       r.integration_seconds += report.cloth_profile[StepStage::kIntegration];
       r.limit_seconds += report.cloth_profile[StepStage::kStretchLimit];
       ++r.steps;
-      if (report.flags & kStepRescued) ++r.rescued;
-      if (report.flags & kStepUnrecoverable) ++r.unrecoverable;
+      if (report.flags.has(StepFlag::kRescued)) ++r.rescued;
+      if (report.flags.has(StepFlag::kUnrecoverable)) ++r.unrecoverable;
       const ClothBody& body = r.world.cloths()[0];
       r.max_strain = std::max(r.max_strain, body.max_strain());
       const Real e = mechanical_energy(body);

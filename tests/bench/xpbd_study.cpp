@@ -30,7 +30,7 @@ struct Config {
 struct Result {
   Real wall_per_sim_s;
   Real max_strain;
-  std::uint32_t flags;
+  StepFlags flags;
 };
 
 Result run(const Config& c) {
@@ -52,7 +52,7 @@ Result run(const Config& c) {
   }
   const Real seconds = 2;
   const long steps = std::lround(seconds / c.h);
-  std::uint32_t flags = 0;
+  StepFlags flags;
   const auto start = std::chrono::steady_clock::now();
   for (long s = 0; s < steps; ++s) flags |= world.step().flags;
   const std::chrono::duration<double> wall = std::chrono::steady_clock::now() - start;
@@ -95,9 +95,10 @@ int main(int argc, char** argv) {
     std::printf("| %u × %u | %s | %g | %.3g | %d | %.3g | %.3f | %.4f | %s |\n", c.n, c.n,
                 c.integrator.c_str(), c.k, c.h * 1e3, c.substeps, c.h / c.substeps * 1e3,
                 r[r.size() / 2].wall_per_sim_s, r[r.size() / 2].max_strain,
-                r[r.size() / 2].flags == 0
+                r[r.size() / 2].flags.ok()
                     ? "ok"
-                    : (r[r.size() / 2].flags & 2 ? "unrecoverable" : "rescued"));
+                    : (r[r.size() / 2].flags.has(felt::StepFlag::kUnrecoverable) ? "unrecoverable"
+                                                                                 : "rescued"));
   }
   return 0;
 }

@@ -9,7 +9,7 @@ namespace {
 
 StepReport unrecoverable(BodyId body) {
   StepReport report;
-  report.flags = kStepUnrecoverable;
+  report.flags = {StepFlag::kUnrecoverable};
   report.unrecoverable_bodies = {body};
   return report;
 }
@@ -29,7 +29,7 @@ TEST(HealthEvents, StepsInTroubleAreToldAtMostOncePerIntervalAndNeverTwice) {
   // then the next ones wait for the interval
   for (int i = 0; i < 5; ++i) health.count(unrecoverable(4));
   StepReport rescued;
-  rescued.flags = kStepRescued;
+  rescued.flags = {StepFlag::kRescued};
   health.count(rescued);
   health.report(start + HealthEvents::kInterval / 2, false, stamp);
   ASSERT_EQ(log->events().size(), 2u);  // the first unrecoverable one, the first rescued one

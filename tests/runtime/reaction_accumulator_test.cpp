@@ -57,7 +57,7 @@ struct Sheet {
   }
   void step(ReactionAccumulator& reactions) {
     reactions.apply_and_clear(scene.world);
-    EXPECT_EQ(scene.world.step().flags, kStepOk);
+    EXPECT_EQ(scene.world.step().flags, StepFlags{});
   }
 };
 

@@ -39,7 +39,7 @@ TEST(ServedStepBudget, NoStepOfAServedClothSceneExceedsItsBudget) {
     for (int n = 0; n < 20; ++n) {
       const StepReport report = world.step();
       EXPECT_LE(counter.take_work(), kBudget) << "step " << n;
-      if (report.flags & kStepOverBudget) ++over_budget;
+      if (report.flags.has(StepFlag::kOverBudget)) ++over_budget;
     }
     EXPECT_EQ(world.step_counts(0).over_budget_steps, over_budget);
   }

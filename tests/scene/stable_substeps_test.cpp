@@ -33,7 +33,7 @@ struct RunSummary {
   Real max_strain = 0;
   Real max_kinetic = 0;
   bool finite = true;
-  std::uint32_t flags = 0;
+  StepFlags flags;
 };
 
 /// Steps the scene's first cloth for `seconds`.
@@ -63,7 +63,7 @@ TEST(StableSubsteps, ExplicitEulerOnTheDefaultSceneStaysFiniteAndWithinItsStretc
   EXPECT_LT(limit, 2.5e-4);
   const RunSummary euler = run(scene, 3);
   EXPECT_TRUE(euler.finite);
-  EXPECT_EQ(euler.flags & (kStepRescued | kStepUnrecoverable | kStepOverBudget), 0u);
+  EXPECT_EQ(euler.flags, StepFlags{});
   EXPECT_EQ(scene.world.step_counts(0).substeps, static_cast<int>(std::ceil(1e-3 / limit)));
   // the same sag as the symplectic run, within a tenth: first order, not unstable
   EXPECT_LT(euler.max_strain, 1.1 * symplectic.max_strain);
@@ -84,7 +84,7 @@ TEST(StableSubsteps, LeapfrogJustAboveItsLimitOnThe40x40ClothIsSubsteppedAndBoun
   const RunSummary reference = run(half, 1);
   const RunSummary leapfrog = run(scene, 1);
   EXPECT_TRUE(leapfrog.finite);
-  EXPECT_EQ(leapfrog.flags & (kStepRescued | kStepUnrecoverable | kStepOverBudget), 0u);
+  EXPECT_EQ(leapfrog.flags, StepFlags{});
   EXPECT_GE(scene.world.step_counts(0).substeps, 2);
   EXPECT_NEAR(leapfrog.max_kinetic / reference.max_kinetic, 1, 0.05);
 }
@@ -97,7 +97,7 @@ TEST(StableSubsteps, WithoutThemLeapfrogAboveItsLimitIsOnlyCaughtByTheHealthChec
   ASSERT_TRUE(apply_override(document, "health.auto_substeps=false"));
   Scene scene = load(document);
   const RunSummary leapfrog = run(scene, 1);
-  EXPECT_NE(leapfrog.flags & (kStepRescued | kStepUnrecoverable), 0u);
+  EXPECT_TRUE(leapfrog.flags.any_of({StepFlag::kRescued, StepFlag::kUnrecoverable}));
 }
 
 TEST(StableSubsteps, ExplicitEulerOnUndampedSpringsIsRefusedWithTheReason) {

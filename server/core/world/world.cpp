@@ -212,17 +212,17 @@ StepReport World::step(const std::function<void()>& yield_point) {
   moving_colliders_.clear();
   const ClothStepStats& cloth =
       cloths_.step(time_, settings_.time_step, step_colliders_, yield_point);
-  if (cloth.rescued) report.flags |= kStepRescued;
+  if (cloth.rescued) report.flags.set(StepFlag::kRescued);
   for (std::uint32_t index : cloth.rescued_bodies)
     report.rescued_bodies.push_back(cloth_ids_[index]);
   if (!cloth.unrecoverable.empty()) {
-    report.flags |= kStepUnrecoverable;
+    report.flags.set(StepFlag::kUnrecoverable);
     for (std::uint32_t index : cloth.unrecoverable) {
       report.unrecoverable_bodies.push_back(cloth_ids_[index]);
     }
   }
   if (!cloth.over_budget.empty()) {
-    report.flags |= kStepOverBudget;
+    report.flags.set(StepFlag::kOverBudget);
     for (std::uint32_t index : cloth.over_budget) {
       report.over_budget_bodies.push_back(cloth_ids_[index]);
     }
@@ -234,18 +234,18 @@ StepReport World::step(const std::function<void()>& yield_point) {
     const SolidStepStats& solid =
         solids_.step(settings_.time_step, settings_.gravity, step_colliders_, yield_point);
     if (solid.rescued) {
-      report.flags |= kStepRescued;
+      report.flags.set(StepFlag::kRescued);
       report.rescued_bodies.insert(report.rescued_bodies.end(), solid_ids_.begin(),
                                    solid_ids_.end());
     }
     if (solid.unrecoverable) {
       // the solids step together, so all of them were rolled back
-      report.flags |= kStepUnrecoverable;
+      report.flags.set(StepFlag::kUnrecoverable);
       report.unrecoverable_bodies.insert(report.unrecoverable_bodies.end(), solid_ids_.begin(),
                                          solid_ids_.end());
     }
     if (solid.over_budget) {
-      report.flags |= kStepOverBudget;
+      report.flags.set(StepFlag::kOverBudget);
       report.over_budget_bodies.insert(report.over_budget_bodies.end(), solid_ids_.begin(),
                                        solid_ids_.end());
     }

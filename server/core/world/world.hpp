@@ -9,6 +9,7 @@
 #include "core/cloth/cloth_system.hpp"
 #include "core/collision/collider.hpp"
 #include "core/solids/solid_system.hpp"
+#include "core/step/step_flags.hpp"
 
 namespace felt {
 
@@ -40,18 +41,8 @@ struct BodyRef {
   std::uint32_t index = 0;
 };
 
-/// What happened in one step, as bit flags (DESIGN "numerical health").
-enum StepFlag : std::uint32_t {
-  kStepOk = 0,
-  kStepRescued = 1u << 0,        ///< a body's step failed and was redone with substeps
-  kStepUnrecoverable = 1u << 1,  ///< a body could not be rescued; it was rolled back and stopped
-  /// a body's step reached its budget (HealthSettings::step_budget) or an integrator's cap and
-  /// went on with what it could afford
-  kStepOverBudget = 1u << 2,
-};
-
 struct StepReport {
-  std::uint32_t flags = kStepOk;
+  StepFlags flags;
   int max_substeps = 1;                             ///< the most substeps any body needed
   std::vector<std::uint32_t> rescued_bodies;        ///< ids; empty (no allocation) when none
   std::vector<std::uint32_t> unrecoverable_bodies;  ///< ids; empty (no allocation) when none

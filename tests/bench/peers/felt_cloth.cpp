@@ -34,7 +34,7 @@ Outcome run_felt(std::uint32_t n, const FeltConfig& config) {
   for (std::uint32_t p : grid_pin_indices(spec, GridPinPreset::kTopCorners)) cloth.pin(p);
 
   const long steps = std::lround(kSeconds / config.step);
-  std::uint32_t flags = 0;
+  StepFlags flags;
   const auto start = std::chrono::steady_clock::now();
   for (long s = 0; s < steps; ++s) flags |= world.step().flags;
   const std::chrono::duration<double> wall = std::chrono::steady_clock::now() - start;
@@ -44,8 +44,8 @@ Outcome run_felt(std::uint32_t n, const FeltConfig& config) {
   outcome.wall_per_sim_s = wall.count() / kSeconds;
   outcome.max_strain = max_structural_strain(n, x);
   outcome.sag_error = sag_error(x);
-  outcome.ok = intact(outcome.max_strain, x) && (flags & kStepUnrecoverable) == 0;
-  if (flags & kStepRescued) outcome.note = "rescued";
+  outcome.ok = intact(outcome.max_strain, x) && !flags.has(StepFlag::kUnrecoverable);
+  if (flags.has(StepFlag::kRescued)) outcome.note = "rescued";
   return outcome;
 }
 

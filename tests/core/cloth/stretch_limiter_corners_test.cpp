@@ -40,7 +40,7 @@ TEST_P(TwoCornerHang, HoldsTheLimitAfterEveryStep) {
     World world = corner_hang(c.integrator, c.h, limited);
     Real strain = 0;
     while (world.time() < 1.5) {
-      EXPECT_EQ(world.step().flags & kStepUnrecoverable, 0u);
+      EXPECT_FALSE(world.step().flags.has(StepFlag::kUnrecoverable));
       strain = std::max(strain, world.cloths()[0].max_strain());
     }
     return strain;

@@ -46,7 +46,7 @@ TEST(StepBudget, AnAbsurdAdaptiveStepEndsWithinItsBudgetAndIsReported) {
     most = std::max(most, work);
     // every attempt of the step, every retry and every internal step together
     EXPECT_LE(work, kBudget) << "step " << n;
-    if (report.flags & kStepOverBudget) {
+    if (report.flags.has(StepFlag::kOverBudget)) {
       ++over_budget;
       EXPECT_EQ(report.over_budget_bodies, std::vector<std::uint32_t>{id});
     }
@@ -78,7 +78,7 @@ TEST(StepBudget, RetriesTheBudgetCannotAffordAreNotTried) {
   world.cloths()[0].state().x[1].x() = 1.1;
   for (int n = 0; n < 10; ++n) {
     const StepReport report = world.step();
-    EXPECT_TRUE(report.flags & kStepOverBudget) << "step " << n;
+    EXPECT_TRUE(report.flags.has(StepFlag::kOverBudget)) << "step " << n;
     EXPECT_LE(world.step_counts(id).substeps, 64);
   }
 }

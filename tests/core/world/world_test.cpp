@@ -86,18 +86,18 @@ TEST(World, ExplodingClothIsRolledBackAndNeverNonFinite) {
                             GridPinPreset::kTopCorners));  // a calm body beside it
   world.add_body(
       make_cloth(small_grid(), params(1e7, 0), "explicit_euler", GridPinPreset::kTopCorners));
-  std::uint32_t flags = 0;
+  StepFlags flags;
   for (int n = 0; n < 300; ++n) {
     const StepReport report = world.step();
     flags |= report.flags;
-    if (report.flags & kStepUnrecoverable) {
+    if (report.flags.has(StepFlag::kUnrecoverable)) {
       // the report names the body that failed, not its calm neighbour
       ASSERT_EQ(report.unrecoverable_bodies, std::vector<std::uint32_t>{1}) << "step " << n;
     }
     for (const Vec3& x : world.cloths()[1].state().x) ASSERT_TRUE(x.allFinite()) << "step " << n;
     for (const Vec3& v : world.cloths()[1].state().v) ASSERT_LE(v.norm(), 50.0) << "step " << n;
   }
-  EXPECT_TRUE(flags & kStepUnrecoverable);
+  EXPECT_TRUE(flags.has(StepFlag::kUnrecoverable));
 }
 
 TEST(World, SubstepsRescueAStepThatIsTooLongForTheSprings) {
@@ -109,15 +109,15 @@ TEST(World, SubstepsRescueAStepThatIsTooLongForTheSprings) {
   World world(settings);
   world.add_body(
       make_cloth(small_grid(), params(3e4, 0.05), "symplectic_euler", GridPinPreset::kTopRow));
-  std::uint32_t flags = 0;
+  StepFlags flags;
   int most_substeps = 1;
   for (int n = 0; n < 100; ++n) {
     const StepReport report = world.step();
     flags |= report.flags;
     most_substeps = std::max(most_substeps, report.max_substeps);
   }
-  EXPECT_TRUE(flags & kStepRescued);
-  EXPECT_FALSE(flags & kStepUnrecoverable);
+  EXPECT_TRUE(flags.has(StepFlag::kRescued));
+  EXPECT_FALSE(flags.has(StepFlag::kUnrecoverable));
   EXPECT_GT(most_substeps, 1);
 }
 
@@ -126,7 +126,7 @@ TEST(World, ExplicitEulerStartsFromRestWithoutARescue) {
   // count that as work done by gravity, not as an explosion
   World world(WorldSettings{Vec3(0, -9.81, 0), 1e-4, 100, 6});
   world.add_body(make_cloth(small_grid(), params(), "explicit_euler", GridPinPreset::kTopCorners));
-  for (int n = 0; n < 100; ++n) ASSERT_EQ(world.step().flags, kStepOk) << "step " << n;
+  for (int n = 0; n < 100; ++n) ASSERT_EQ(world.step().flags, StepFlags{}) << "step " << n;
   EXPECT_LT(world.cloths()[0].state().x[63].y(), 1 - 0.25 - 1e-4);  // the free corner fell
 }
 
