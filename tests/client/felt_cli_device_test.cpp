@@ -85,8 +85,9 @@ TEST_F(FeltCliTest, TouchAlongALineLogsEveryUpdate) {
       EXPECT_EQ(row[kTriangle], "-1");
       EXPECT_EQ(std::stod(row[kFz]), 0);
     }
-    // the 2 cm proxy cannot reach the curtain from 5 cm in front of it
-    if (z > 0.05) {
+    // on the way in, the 2 cm proxy cannot reach the curtain at rest from 5 cm in front of it
+    // (on the way out, the pushed curtain may swing further forward)
+    if (z > 0.05 && k <= 50) {
       EXPECT_EQ(row[kInContact], "0") << k;
     }
   }
@@ -123,7 +124,10 @@ TEST_F(FeltCliTest, TouchWithALocalModelRendersTheCurtainAtTheDevicesRate) {
     } else {
       EXPECT_EQ(magnitude, 0) << k;
     }
-    if (std::stod(row[kZ]) > 0.05) {
+    // on the way in only, as in TouchAlongALineLogsEveryUpdate: a sanitized feltd steps the
+    // curtain slower than real time, so the finger hits it harder in the scene's time and, on
+    // the way out, it swings forward past 3 cm (docs/results/sanitizers.md)
+    if (std::stod(row[kZ]) > 0.05 && k <= 250) {
       EXPECT_EQ(row[kInContact], "0") << k;
     }
     largest_push = std::max(largest_push, fz);
