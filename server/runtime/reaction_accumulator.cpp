@@ -16,34 +16,11 @@ bool corners_in_world(const World& world, const ProxySample::Push& push) {
                              [&](std::uint32_t v) { return in_world(world, push.body_id, v); });
 }
 
-/// Where surface vertex `vertex` of cloth or solid `body` is now.
-Vec3 surface_position(const World& world, BodyId body, std::uint32_t vertex) {
-  if (const ClothBody* cloth = world.cloth(body)) return cloth->state().x[vertex];
-  const SolidBody& solid = *world.solid(body);
-  const SolidBody::SurfacePoint point = solid.surface_point(vertex);
-  Vec3 x = Vec3::Zero();
-  for (int c = 0; c < 4; ++c) {
-    if (point.weights[c] != 0) x += point.weights[c] * solid.positions()[point.nodes[c]];
-  }
-  return x;
-}
-
-/// The inverse mass of surface vertex `vertex` of cloth or solid `body`, for a force on it.
-Real surface_inverse_mass(const World& world, BodyId body, std::uint32_t vertex) {
-  if (const ClothBody* cloth = world.cloth(body)) return cloth->inv_mass()[vertex];
-  const SolidBody& solid = *world.solid(body);
-  const SolidBody::SurfacePoint point = solid.surface_point(vertex);
-  Real w = 0;
-  for (int c = 0; c < 4; ++c)
-    w += point.weights[c] * point.weights[c] * solid.inv_mass()[point.nodes[c]];
-  return w;
-}
-
 /// Where the point `push` touched is now.
 Vec3 touched_point(const World& world, const ProxySample::Push& push) {
   Vec3 point = Vec3::Zero();
   for (int c = 0; c < 3; ++c) {
-    point += push.barycentric[c] * surface_position(world, push.body_id, push.corners[c]);
+    point += push.barycentric[c] * world.surface_position(push.body_id, push.corners[c]);
   }
   return point;
 }
@@ -82,7 +59,7 @@ Real ReactionAccumulator::spring_scale(const World& world, ProxyReaction& reacti
   Real inverse_mass = 0;
   for (int c = 0; c < 3; ++c) {
     inverse_mass += push.barycentric[c] * push.barycentric[c] *
-                    surface_inverse_mass(world, push.body_id, push.corners[c]);
+                    world.surface_inverse_mass(push.body_id, push.corners[c]);
   }
   const Real h = world.settings().time_step;
   const Real stable = inverse_mass > 0 ? 1 / (inverse_mass * h * h) : spring.stiffness;

@@ -155,6 +155,30 @@ std::size_t World::surface_vertex_count(BodyId id) const {
   return solid_body ? solid_body->surface_vertex_count() : 0;
 }
 
+Vec3 World::surface_position(BodyId id, std::uint32_t vertex) const {
+  if (const ClothBody* body = cloth(id)) return body->state().x[vertex];
+  const SolidBody* solid_body = solid(id);
+  FELT_CHECK(solid_body != nullptr);
+  const SolidBody::SurfacePoint point = solid_body->surface_point(vertex);
+  Vec3 x = Vec3::Zero();
+  for (int c = 0; c < 4; ++c) {
+    if (point.weights[c] != 0) x += point.weights[c] * solid_body->positions()[point.nodes[c]];
+  }
+  return x;
+}
+
+Real World::surface_inverse_mass(BodyId id, std::uint32_t vertex) const {
+  if (const ClothBody* body = cloth(id)) return body->inv_mass()[vertex];
+  const SolidBody* solid_body = solid(id);
+  FELT_CHECK(solid_body != nullptr);
+  const SolidBody::SurfacePoint point = solid_body->surface_point(vertex);
+  Real w = 0;
+  for (int c = 0; c < 4; ++c) {
+    w += point.weights[c] * point.weights[c] * solid_body->inv_mass()[point.nodes[c]];
+  }
+  return w;
+}
+
 void World::add_surface_force(BodyId id, std::uint32_t vertex, const Vec3& force) {
   if (const BodyRef* ref = live(id, BodyRef::Kind::kCloth)) {
     cloths_.add_external_force(ref->index, vertex, force);

@@ -91,6 +91,13 @@ class World {
   /// How many vertices clients see of body `id`: a cloth's particles, a solid's fine surface
   /// vertices or, without one, its nodes; 0 for a collider.
   std::size_t surface_vertex_count(BodyId id) const;
+  /// Where surface vertex `vertex` of cloth or solid `id` is now: a solid's from the nodes that
+  /// carry it, by their weights.
+  Vec3 surface_position(BodyId id, std::uint32_t vertex) const;
+  /// The inverse mass surface vertex `vertex` of cloth or solid `id` answers a force with: a
+  /// solid's Σ w² / m over the nodes that carry it, since add_surface_force spreads a force by
+  /// the weights and surface_position reads the motion back by them.
+  Real surface_inverse_mass(BodyId id, std::uint32_t vertex) const;
 
   /// Cloths by index among cloths. Mutable access: anything that edits a cloth through it makes
   /// the next step recompute the energies its health check starts from.

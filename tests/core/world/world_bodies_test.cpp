@@ -48,6 +48,31 @@ TEST(WorldBodies, TheFirstBodiesIdsAreTheirIndicesWhateverTheirKind) {
   EXPECT_EQ(world.surface_vertex_count(2), 0u);
 }
 
+TEST(WorldBodies, ASurfaceVertexIsWhereItsParticleOrItsNodesAreAndAnswersForcesByTheirMasses) {
+  World world = mixed_world();
+  const ClothBody& cloth = *world.cloth(0);
+  EXPECT_EQ(world.surface_position(0, 7), cloth.state().x[7]);
+  EXPECT_EQ(world.surface_inverse_mass(0, 7), cloth.inv_mass()[7]);
+  // without a fine surface a solid's surface vertex is its node
+  const SolidBody& cube = *world.solid(1);
+  EXPECT_EQ(world.surface_position(1, 5), cube.positions()[5]);
+  EXPECT_DOUBLE_EQ(world.surface_inverse_mass(1, 5), 1 / 0.01);
+
+  // a fine vertex at a tetrahedron's centroid: the mean of its corners, and a force spread a
+  // quarter to each of four 10 g nodes moves it as 4 (1/4)^2 / 0.01 kg: 1 / 0.04 kg
+  SolidBody embedded = small_cube(Vec3(1, 0.5, 0));
+  const Tetrahedron tet = embedded.rest().tets[3];
+  EmbeddedSurface fine;
+  fine.tet = {3};
+  fine.weights = {Vec4::Constant(0.25)};
+  embedded.set_embedded_surface(std::make_shared<const EmbeddedSurface>(fine));
+  Vec3 centroid = Vec3::Zero();
+  for (std::uint32_t n : tet) centroid += embedded.positions()[n] / 4;
+  const BodyId id = world.add_body(std::move(embedded));
+  EXPECT_TRUE(world.surface_position(id, 0).isApprox(centroid, 1e-15));
+  EXPECT_DOUBLE_EQ(world.surface_inverse_mass(id, 0), 1 / 0.04);
+}
+
 TEST(WorldBodies, ARemovedIdIsNeverValidAgainAndItsSlotGetsTheNextGeneration) {
   World world = mixed_world();
   world.remove_body(0);
