@@ -130,14 +130,14 @@ void handle_proxy_update(Session& session, std::uint64_t id, const v1::ProxyUpda
     session.send_error(id, v1::ERROR_CODE_BAD_REQUEST, kPositionOutOfBound);
     return;
   }
-  HapticProxy* proxy = session.proxy(update.proxy_id());
+  ProxyHandle* proxy = session.proxy(update.proxy_id());
   if (!proxy) {
     session.send_error(id, v1::ERROR_CODE_LIMIT_EXCEEDED, too_many_proxies(session));
     return;
   }
   std::optional<LocalContact> local;
   if (update.has_local()) {
-    if (!proxy->local_model()) {
+    if (!proxy->has_local_model()) {
       session.send_error(id, v1::ERROR_CODE_BAD_REQUEST,
                          "proxy " + std::to_string(update.proxy_id()) +
                              " has no local model (OpenProxy.local_model)");
@@ -150,8 +150,7 @@ void handle_proxy_update(Session& session, std::uint64_t id, const v1::ProxyUpda
     }
     local = *felt;
   }
-  const ProxyOutput out =
-      session.scene()->render(*proxy, position, update.buttons(), local ? &*local : nullptr);
+  const ProxyOutput out = proxy->update(position, update.buttons(), local ? &*local : nullptr);
   // an idle proxy beside this one lets its snapshots go (no clock read: the update's time)
   session.forget_idle_proxy_surfaces(proxy->last_update());
   reply(session, id, [&](v1::ServerMessage& message) {

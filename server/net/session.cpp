@@ -362,13 +362,10 @@ std::uint64_t Session::key_of(std::uint32_t proxy_id) const {
 }
 
 void Session::close_proxies() {
-  if (scene_) {
-    for (const auto& [id, proxy] : proxies_) scene_->close_proxy(proxy);
-  }
   proxies_.clear();
 }
 
-HapticProxy* Session::proxy(std::uint32_t proxy_id) {
+ProxyHandle* Session::proxy(std::uint32_t proxy_id) {
   const auto it = proxies_.find(proxy_id);
   if (it != proxies_.end()) return &it->second;
   if (proxies_.size() >= context_.options.max_proxies_per_session) return nullptr;
@@ -386,7 +383,6 @@ std::uint32_t Session::open_proxy(const ProxySettings& settings) {
 bool Session::close_proxy(std::uint32_t proxy_id) {
   const auto it = proxies_.find(proxy_id);
   if (it == proxies_.end()) return false;
-  scene_->close_proxy(it->second);
   proxies_.erase(it);
   return true;
 }

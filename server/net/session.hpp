@@ -84,7 +84,7 @@ class Session final : public std::enable_shared_from_this<Session>,
 
   /// The open proxy `proxy_id`, opening it with the scene's settings if it is not open; null
   /// when the session already has as many proxies as it may.
-  HapticProxy* proxy(std::uint32_t proxy_id);
+  ProxyHandle* proxy(std::uint32_t proxy_id);
   /// Opens a proxy with `settings` under a fresh id; 0 when the session has as many as it may.
   std::uint32_t open_proxy(const ProxySettings& settings);
   bool close_proxy(std::uint32_t proxy_id);
@@ -168,8 +168,8 @@ class Session final : public std::enable_shared_from_this<Session>,
   std::string client_name_;
   SceneId scene_id_ = 0;
   std::shared_ptr<SceneRunner> scene_;
-  std::shared_ptr<Membership> membership_;  ///< how the scene reaches this session
-  std::map<std::uint32_t, HapticProxy> proxies_;
+  std::shared_ptr<Membership> membership_;        ///< how the scene reaches this session
+  std::map<std::uint32_t, ProxyHandle> proxies_;  ///< after scene_: closed before it goes
   SteadyClock::time_point last_refusal_logged_{};
   std::uint64_t refusals_not_logged_ = 0;
 };

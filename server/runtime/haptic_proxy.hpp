@@ -63,6 +63,7 @@ class HapticProxy {
   void enable_local_model(const LocalModelRequest& request) { local_model_.emplace(request); }
   /// The feed of a local-model proxy, or null.
   LocalModelFeed* local_model() { return local_model_ ? &*local_model_ : nullptr; }
+  bool has_local_model() const { return local_model_.has_value(); }
 
   /// One update with the device at `device` and its `buttons`, against `surface` as rendered
   /// now, `dt` seconds after the previous update (0: unknown); the reaction on the touched body

@@ -24,6 +24,7 @@
 #include "runtime/health_events.hpp"
 #include "runtime/live_haptic_frames.hpp"
 #include "runtime/live_scene.hpp"
+#include "runtime/proxy_handle.hpp"
 #include "runtime/proxy_presence.hpp"
 #include "runtime/published.hpp"
 #include "runtime/reaction_accumulator.hpp"
@@ -147,22 +148,11 @@ class SceneRunner {
   /// The latest published snapshot (never null).
   std::shared_ptr<const SceneSnapshot> latest() const { return live_.latest(); }
 
-  /// A new proxy known to the scene as `key`, with the scene's haptics settings or `settings`.
-  HapticProxy open_proxy(std::uint64_t key) const { return HapticProxy(key, haptics_); }
-  HapticProxy open_proxy(std::uint64_t key, const ProxySettings& settings) const {
-    return HapticProxy(key, settings);
-  }
-  /// Updates `proxy` with its device at `device` against the surfaces as rendered now, and
-  /// records its reaction on the touched body (the reaction of `local`, when a local renderer
-  /// felt it: HapticProxy::update). A local-model proxy gets the surface near it (near
-  /// `local`'s proxy, else the server's) in the output when its feed has one due. Safe from any
-  /// thread; one proxy is updated by one thread at a time.
-  ProxyOutput render(HapticProxy& proxy, const Vec3& device, std::uint32_t buttons,
-                     const LocalContact* local = nullptr);
-  /// Forgets a closed proxy's pending reaction.
-  void close_proxy(const HapticProxy& proxy) {
-    reactions_.forget(proxy.key());
-    presence_.forget(proxy.key());
+  /// A new proxy known to the scene as `key`, with the scene's haptics settings or `settings`:
+  /// the handle updates it (render) and closes it when it goes (close_proxy).
+  ProxyHandle open_proxy(std::uint64_t key) { return {*this, HapticProxy(key, haptics_)}; }
+  ProxyHandle open_proxy(std::uint64_t key, const ProxySettings& settings) {
+    return {*this, HapticProxy(key, settings)};
   }
   /// The proxies rendered in the last `within`, as everyone in the scene may see them.
   std::vector<ProxyPresenceEntry> presence(std::chrono::steady_clock::duration within) const {
@@ -187,6 +177,21 @@ class SceneRunner {
   static constexpr std::uint32_t kMaxStepsPerRequest = SceneRequests::kMaxStepsPerRequest;
 
  private:
+  friend class ProxyHandle;
+
+  /// Updates `proxy` with its device at `device` against the surfaces as rendered now, and
+  /// records its reaction on the touched body (the reaction of `local`, when a local renderer
+  /// felt it: HapticProxy::update). A local-model proxy gets the surface near it (near
+  /// `local`'s proxy, else the server's) in the output when its feed has one due. Safe from any
+  /// thread; one proxy is updated by one thread at a time.
+  ProxyOutput render(HapticProxy& proxy, const Vec3& device, std::uint32_t buttons,
+                     const LocalContact* local = nullptr);
+  /// Forgets a closed proxy's pending reaction and presence.
+  void close_proxy(const HapticProxy& proxy) {
+    reactions_.forget(proxy.key());
+    presence_.forget(proxy.key());
+  }
+
   void run(std::stop_token stop);
   /// One step: queued forces and reactions, the world's step, the health bookkeeping.
   StepReport step_once();

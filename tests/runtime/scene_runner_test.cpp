@@ -105,18 +105,18 @@ TEST(SceneRunner, AppliesPostedCommandsBetweenSteps) {
 }
 
 /// One update of `proxy` with no buttons held.
-HapticContact touch(SceneRunner& runner, HapticProxy& proxy, const Vec3& device) {
-  return runner.render(proxy, device, 0).contact;
+HapticContact touch(ProxyHandle& proxy, const Vec3& device) {
+  return proxy.update(device, 0).contact;
 }
 
 TEST(SceneRunner, TouchPushesOutOfTheClothAndDentsIt) {
   ManualClock clock;
   SceneRunner runner(flat_cloth_scene(), {}, {}, {}, clock);
-  HapticProxy proxy = runner.open_proxy(1);
+  ProxyHandle proxy = runner.open_proxy(1);
   const std::uint32_t centre = 5 * 11 + 5;
   // a proxy of radius 5 cm centred 3 cm above the centre of the sheet: depth 2 cm
   const Vec3 above(0, 0.03, 0);
-  const HapticContact contact = touch(runner, proxy, above);
+  const HapticContact contact = touch(proxy, above);
   ASSERT_TRUE(contact.in_contact);
   EXPECT_NEAR(contact.force.y(), 400 * 0.02, 1e-6);
   EXPECT_NEAR(contact.force.x(), 0, 1e-12);
@@ -131,7 +131,7 @@ TEST(SceneRunner, TouchPushesOutOfTheClothAndDentsIt) {
   ASSERT_TRUE(settled(clock));
   clock.advance(500us);
   for (int step = 0; step < 300; ++step) {
-    touch(runner, proxy, above);
+    touch(proxy, above);
     ASSERT_TRUE(move_clock(clock, 1ms));
   }
   runner.stop();
@@ -140,20 +140,35 @@ TEST(SceneRunner, TouchPushesOutOfTheClothAndDentsIt) {
   EXPECT_EQ(runner.stats().haptic_updates, 301u);
 
   // from below, the force points down
-  HapticProxy other = runner.open_proxy(2);
-  const HapticContact below = touch(runner, other, Vec3(0.2, -0.2, 0.2));
+  ProxyHandle other = runner.open_proxy(2);
+  const HapticContact below = touch(other, Vec3(0.2, -0.2, 0.2));
   EXPECT_FALSE(below.in_contact);
   EXPECT_EQ(below.force, Vec3::Zero());
   EXPECT_EQ(below.contact_point, Vec3(0.2, -0.2, 0.2));
+}
+
+TEST(SceneRunner, AProxyIsClosedWhenItsHandleGoes) {
+  SceneRunner runner(flat_cloth_scene());
+  {
+    ProxyHandle first = runner.open_proxy(1);
+    ASSERT_TRUE(touch(first, Vec3(0, 0.03, 0)).in_contact);
+    ProxyHandle moved = std::move(first);  // the moved-from handle closes nothing
+    touch(moved, Vec3(0, 0.03, 0));
+    ProxyHandle second = runner.open_proxy(2);
+    touch(second, Vec3(0.2, 0.5, 0.2));
+    EXPECT_EQ(runner.presence(1h).size(), 2u);
+  }
+  // both are forgotten: no presence shown to the others, and no reaction held for the cloth
+  EXPECT_TRUE(runner.presence(1h).empty());
 }
 
 TEST(SceneRunner, ASingleTouchKeepsPushingUntilTheNextUpdate) {
   // a device slower than the physics: its last reaction is held between its updates
   ManualClock clock;
   SceneRunner runner(flat_cloth_scene(), {}, {}, {}, clock);
-  HapticProxy proxy = runner.open_proxy(1);
+  ProxyHandle proxy = runner.open_proxy(1);
   const std::uint32_t centre = 5 * 11 + 5;
-  ASSERT_TRUE(touch(runner, proxy, Vec3(0, 0.03, 0)).in_contact);
+  ASSERT_TRUE(touch(proxy, Vec3(0, 0.03, 0)).in_contact);
   runner.start();
   ASSERT_TRUE(settled(clock));
   clock.advance(500us);
@@ -162,7 +177,7 @@ TEST(SceneRunner, ASingleTouchKeepsPushingUntilTheNextUpdate) {
   EXPECT_LT(dented, -0.005);
   // a free update releases it: the sheet springs back toward flat (slowly from a shallow dent:
   // the tension of a sheet with none at rest grows with the square of its dent)
-  touch(runner, proxy, Vec3(0, 1, 0));
+  touch(proxy, Vec3(0, 1, 0));
   ASSERT_TRUE(move_clock(clock, 1800ms));
   runner.stop();
   EXPECT_EQ(runner.latest()->step, 2000u);
@@ -186,9 +201,9 @@ TEST(SceneRunner, AClientsArrivalHasThePhysicsThreadMakeHapticFramesBeforeItsFir
 
 TEST(SceneRunner, ForceIsClampedToTheMaximum) {
   SceneRunner runner(flat_cloth_scene());
-  HapticProxy proxy = runner.open_proxy(1);
+  ProxyHandle proxy = runner.open_proxy(1);
   // at the surface the depth is the whole radius: 400 N/m · 5 cm = 20 N, clamped to 10 N
-  const HapticContact contact = touch(runner, proxy, Vec3(0.01, 0.0001, 0.01));
+  const HapticContact contact = touch(proxy, Vec3(0.01, 0.0001, 0.01));
   ASSERT_TRUE(contact.in_contact);
   EXPECT_NEAR(contact.force.norm(), 10, 1e-9);
 }
