@@ -33,7 +33,27 @@ constexpr const char* kLogHeader =
 /// What record writes and replay reads (feltd run --replay's format).
 constexpr const char* kRecordingHeader =
     "time,device,x,y,z,buttons,contact,body,triangle,proxy_x,proxy_y,proxy_z,fx,fy,fz";
-enum Column { kTime, kX, kY, kZ, kButtons, kFx, kFy, kFz, kInContact, kBody, kTriangle };
+enum Column {
+  kTime,
+  kX,
+  kY,
+  kZ,
+  kButtons,
+  kFx,
+  kFy,
+  kFz,
+  kInContact,
+  kBody,
+  kTriangle,
+  kContactX,
+  kContactY,
+  kContactZ,
+  kGrabbing,
+  kRoundTripUs,
+  kProxyX,
+  kProxyY,
+  kProxyZ
+};
 
 TEST_F(FeltCliTest, TouchAtAPointJustInFrontOfTheCurtainFeelsItPushBack) {
   // the README's point: 1 cm into the curtain, at the haptics' 400 N/m
@@ -187,6 +207,37 @@ TEST_F(FeltCliTest, GrabHoldsAVertexAndDragsIt) {
   EXPECT_EQ(counts[1], 301);
   EXPECT_GT(counts[3], 100) << r.out;
   EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(\nlast: .*, holding vertex \d+\n)"))) << r.out;
+}
+
+// Issue 26: grabbing with a local model. The server resolves the grab from the device's upstream
+// updates (250 Hz here) and the device renders the grab spring the server reports, so the
+// vertex is held and dragged as without one.
+TEST_F(FeltCliTest, GrabWithALocalModelHoldsAVertexAndDragsIt) {
+  const auto log = dir_ / "grab.csv";
+  const CommandResult r = felt({"grab", "--local-model", "--upstream-rate", "250", "--from",
+                                "0.45,1.9,0.03", "--to", "0.45,1.9,-0.1", "--period", "0.3",
+                                "--duration", "0.6", "--rate", "500", "--log", log.string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto counts =
+      numbers_in(r.out, R"(^(\d+) updates sent, (\d+) answered, (\d+) in contact, (\d+) grabbing)");
+  ASSERT_EQ(counts.size(), 4u) << r.out;
+  EXPECT_EQ(counts[0], 301);
+  EXPECT_GT(counts[3], 100) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(\nlast: .*, holding vertex \d+\n)"))) << r.out;
+  std::string header;
+  const auto rows = csv_rows(log, header);
+  ASSERT_EQ(rows.size(), 301u);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const double fx = std::stod(rows[k][kFx]), fy = std::stod(rows[k][kFy]);
+    const double fz = std::stod(rows[k][kFz]);
+    const double magnitude = std::sqrt(fx * fx + fy * fy + fz * fz);
+    ASSERT_TRUE(std::isfinite(magnitude)) << k;
+    EXPECT_LE(magnitude, 10 + 1e-6) << k;  // the scene's max_force
+  }
+  // held at the end, 10 cm behind the curtain's rest: the held vertex came most of the way
+  const auto& last = rows.back();
+  EXPECT_EQ(last[kGrabbing], "1");
+  EXPECT_LT(std::stod(last[kProxyZ]), -0.05) << r.out;
 }
 
 TEST_F(FeltCliTest, AReplayedRecordingFindsTheSameContacts) {
