@@ -80,6 +80,11 @@ int this_thread_nice() {
   return getpriority(PRIO_PROCESS, static_cast<id_t>(gettid()));
 }
 
+std::expected<void, std::string> step_this_thread_aside(int nice) {
+  if (nice <= this_thread_nice()) return {};
+  return set_this_thread_nice(nice);
+}
+
 std::expected<void, std::string> make_this_thread_realtime(int priority) {
   if (priority < 1 || priority > kMaxRealtimePriority) {
     return std::unexpected("real-time priority " + std::to_string(priority) + " is not in 1 to " +

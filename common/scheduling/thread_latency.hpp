@@ -45,6 +45,11 @@ constexpr int kMaxNice = 19;
 std::expected<void, std::string> set_this_thread_nice(int nice);
 /// The calling thread's nice.
 int this_thread_nice();
+/// Raises the calling thread's nice to `nice` (0 to kMaxNice) to step aside for the threads of
+/// the haptic path, and never lowers it: in a process started nicer than that (nice -n 15), a
+/// privileged thread could lower its nice and so rise above the network threads it should yield
+/// to.
+std::expected<void, std::string> step_this_thread_aside(int nice);
 
 /// The highest priority make_this_thread_realtime accepts (the kernel's SCHED_FIFO range).
 constexpr int kMaxRealtimePriority = 99;

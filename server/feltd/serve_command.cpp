@@ -81,7 +81,7 @@ int serve(const ServeOptions& options) {
   asio::post(context.frame_encoder, asio::use_future([nice = options.limits.background_nice] {
                felt::name_thread(pthread_self(), "felt-frames");
                // in range: the flag is checked
-               if (nice != 0) (void)felt::set_this_thread_nice(nice);
+               if (nice != 0) (void)felt::step_this_thread_aside(nice);
              }))
       .get();
   for (const std::string& file : options.scenes) {

@@ -58,7 +58,7 @@ void SceneRunner::start(int physics_nice) {
   if (thread_.joinable()) return;
   thread_ = std::jthread([this, physics_nice](std::stop_token stop) {
     // a nice out of range leaves the thread as it was (feltd checks its flag)
-    if (physics_nice != 0) (void)set_this_thread_nice(physics_nice);
+    if (physics_nice != 0) (void)step_this_thread_aside(physics_nice);
     run(stop);
   });
   name_thread(thread_.native_handle(), "felt-physics");

@@ -100,6 +100,25 @@ TEST(ThreadNice, IsTheCallingThreadsAloneAndGoesToTheThreadsItStarts) {
   EXPECT_EQ(this_thread_nice(), mine);
 }
 
+// Found by running the suite under nice 15 as root: feltd's background threads went to nice 10,
+// above the network threads they step aside for.
+TEST(ThreadNice, SteppingAsideRaisesTheNiceAndNeverLowersIt) {
+  const int mine = this_thread_nice();
+  if (mine + 4 > kMaxNice) GTEST_SKIP() << "the test runs too near the highest nice";
+  int kept = -1, raised = -1;
+  std::string refused;
+  std::thread([&] {
+    if (const auto set = step_this_thread_aside(mine + 2); !set) refused = set.error();
+    if (const auto lower = step_this_thread_aside(mine + 1); !lower) refused = lower.error();
+    kept = this_thread_nice();
+    if (const auto higher = step_this_thread_aside(mine + 4); !higher) refused = higher.error();
+    raised = this_thread_nice();
+  }).join();
+  ASSERT_TRUE(refused.empty()) << refused;
+  EXPECT_EQ(kept, mine + 2);
+  EXPECT_EQ(raised, mine + 4);
+}
+
 TEST(ThreadNice, ANiceOutsideTheRangeIsRefusedWithTheRange) {
   const int mine = this_thread_nice();
   for (const int nice : {-1, kMaxNice + 1}) {
