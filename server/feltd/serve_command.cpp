@@ -255,8 +255,9 @@ CLI::App* add_serve_command(CLI::App& app, ServeOptions& options) {
   serve_cmd
       ->add_option("--background-nice", limits.background_nice,
                    "Nice of the busy threads off the haptic path: every scene's physics and the "
-                   "frame encoder (0-19; no privilege), so that a haptic update's "
-                   "network thread preempts them at once (0: as the network threads)")
+                   "frame encoder (0-19; no privilege; never below feltd's own), so that a "
+                   "haptic update's network thread preempts them at once (0: as the network "
+                   "threads)")
       ->check(CLI::Range(0, felt::kMaxNice))
       ->capture_default_str();
   serve_cmd
