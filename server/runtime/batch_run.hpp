@@ -80,8 +80,8 @@ struct BatchRunStats {
   bool nonfinite = false;  ///< a step could not be rescued, or a non-finite value remains
   std::uint64_t rescued_steps = 0;
   std::uint64_t unrecoverable_steps = 0;
-  std::uint64_t over_budget_steps =
-      0;  ///< steps some body's budget cut short (StepFlag::kOverBudget)
+  /// steps some body's budget cut short (StepFlag::kOverBudget)
+  std::uint64_t over_budget_steps = 0;
   std::vector<BodyRunStats> bodies;
   StageRunStats cloth;
   SolidRunStats solids;
