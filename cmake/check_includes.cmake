@@ -1,6 +1,7 @@
 # The dependency rules of the tree, checked on every build so that a stray include fails it
 # instead of slipping in (docs/architecture.md, "Layers"):
-#  - felt_core is the simulation: Eigen and the standard library, no threads, files or sockets;
+#  - felt_core is the simulation: Eigen, the standard library and felt_ids, no threads, files or
+#    sockets;
 #  - the layers point one way: net -> runtime -> scene -> core;
 #  - felt_haptics (core/{math,geometry,collision,haptics} but the particle collider), which the
 #    client links too, includes nothing else of the core;
@@ -29,6 +30,8 @@ forbid_includes(server/core
   "(boost/|asio|google/protobuf|\\.pb\\.h|nlohmann|json|<thread>|<mutex>|<shared_mutex>|<condition_variable>|<future>|<atomic>|<stop_token>|<fstream>|<filesystem>|<iostream>|<pthread\\.h>|<unistd\\.h>|sys/socket|netinet/|arpa/)"
   "felt_core includes Eigen and the standard library only, and no threads, files or sockets")
 forbid_includes(server/core "\"(scene|runtime|net)/" "felt_core includes no layer above it")
+forbid_includes(server/core "\"(device|scheduling|mesh_files|command_line)/"
+  "felt_core uses nothing of common/ but its ids (felt_ids)")
 forbid_includes(server/scene "\"(runtime|net)/" "felt_scene includes no layer above it")
 forbid_includes(server/runtime "\"net/" "felt_runtime includes no layer above it")
 set(not_haptics "\"((scene|runtime|net)/|core/(cloth|solids|world|integrate)/|core/collision/collider)")

@@ -106,7 +106,7 @@ int serve(const ServeOptions& options) {
     const std::string name = runner->name();
     const SceneId id = scenes.add(std::move(runner));
     if (context.default_scene == 0) context.default_scene = id;
-    log.info("scene " + std::to_string(id) + " \"" + name + "\" loaded from " + file +
+    log.info("scene " + std::to_string(id.value()) + " \"" + name + "\" loaded from " + file +
              (id == context.default_scene ? ", the scene new clients join" : ""));
   }
 

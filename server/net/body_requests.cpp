@@ -121,7 +121,7 @@ void change_solid(const v1::SetBodyParameters& set, SolidBody& body) {
 
 Completion<BodyId> answer_body_updated(std::shared_ptr<PendingReply> pending) {
   return answer<BodyId>(std::move(pending), [](const BodyId& body, v1::ServerMessage& message) {
-    message.mutable_body_updated()->set_body_id(body);
+    message.mutable_body_updated()->set_body_id(body.value());
   });
 }
 
@@ -138,13 +138,13 @@ std::optional<BodyInfo> changeable_body(Session& session, std::uint64_t id, Body
   const BodyInfo* body = bodies->find(body_id);
   if (!body) {
     session.send_error(id, v1::ERROR_CODE_UNKNOWN_ID,
-                       "no body " + std::to_string(body_id) + " in this scene");
+                       "no body " + std::to_string(body_id.value()) + " in this scene");
     return std::nullopt;
   }
   if (!session.scene()->may_change(session.client_id(), *body)) {
     session.send_error(id, v1::ERROR_CODE_PERMISSION_DENIED,
-                       "body " + std::to_string(body_id) + " belongs to client " +
-                           std::to_string(body->owner) + " and the scene is not shared");
+                       "body " + std::to_string(body_id.value()) + " belongs to client " +
+                           std::to_string(body->owner.value()) + " and the scene is not shared");
     return std::nullopt;
   }
   return *body;
@@ -196,7 +196,7 @@ void handle_remove_body(Session& session, std::uint64_t id, const v1::RemoveBody
   session.scene()->remove_body(
       session.client_id(), remove.body_id(),
       answer<BodyId>(pending, [](const BodyId& body, v1::ServerMessage& message) {
-        message.mutable_body_removed()->set_body_id(body);
+        message.mutable_body_removed()->set_body_id(body.value());
       }));
 }
 

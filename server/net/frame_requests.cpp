@@ -37,11 +37,13 @@ void handle_subscribe(Session& session, std::uint64_t id, const v1::SubscribeFra
                "max_unacknowledged " + std::to_string(subscribe.max_unacknowledged()) +
                    " is above the limit of " + std::to_string(FrameStream::kMaxWindow));
   }
-  std::vector<BodyId> wanted = sorted_unique(subscribe.body_ids());
+  std::vector<BodyId> wanted =
+      sorted_unique<decltype(subscribe.body_ids()), BodyId>(subscribe.body_ids());
   const auto bodies = session.scene()->bodies();
   for (BodyId body : wanted) {
     if (!bodies->find(body)) {
-      return bad(v1::ERROR_CODE_UNKNOWN_ID, "no body " + std::to_string(body) + " in this scene");
+      return bad(v1::ERROR_CODE_UNKNOWN_ID,
+                 "no body " + std::to_string(body.value()) + " in this scene");
     }
   }
   FrameOptions options;
@@ -56,7 +58,7 @@ void handle_subscribe(Session& session, std::uint64_t id, const v1::SubscribeFra
   session.subscribe_frames(options);
   reply(session, id, [&](v1::ServerMessage& message) {
     v1::Subscribed& subscribed = *message.mutable_subscribed();
-    subscribed.set_scene_id(session.scene_id());
+    subscribed.set_scene_id(session.scene_id().value());
     subscribed.set_rate_hz(options.rate_hz);
     subscribed.set_encoding(subscribe.encoding());
     subscribed.set_deltas(options.deltas);

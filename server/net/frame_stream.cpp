@@ -91,7 +91,7 @@ void put_body(const BodySnapshot& body, const std::vector<float>* positions,
               const FrameOptions& options, bool triangles, const FrameStream::BodyRecord* base,
               FrameStream::BodyRecord& record, felt::v1::Frame& frame) {
   felt::v1::BodyFrame& out = *frame.add_bodies();
-  out.set_body_id(body.body_id);
+  out.set_body_id(body.body_id.value());
   out.set_name(body.name);
   out.set_vertex_count(static_cast<std::uint32_t>(body.positions.size()));
   if (options.quantized) {
@@ -196,7 +196,7 @@ void FrameStream::encode(const Plan& plan, SharedFrameBodies& shared, std::strin
   // the frame's fields in their numbers' order, as protobuf writes them: those before the bodies
   // (1-4), the bodies (5), those after them (6-8)
   felt::v1::Frame before;
-  before.set_scene_id(plan.scene);
+  before.set_scene_id(plan.scene.value());
   before.set_step(snapshot.step);
   before.set_sim_time(snapshot.sim_time);
   before.set_skipped(plan.skipped);
@@ -255,9 +255,9 @@ void FrameStream::encode(const Plan& plan, SharedFrameBodies& shared, std::strin
 void FrameStream::put_proxies(const std::vector<ProxyView>& proxies, felt::v1::Frame& frame) {
   for (const ProxyView& proxy : proxies) {
     felt::v1::ProxyPresence& out = *frame.add_proxies();
-    out.set_client_id(proxy.client);
+    out.set_client_id(proxy.client.value());
     out.set_client_name(proxy.client_name);
-    out.set_proxy_id(proxy.proxy_id);
+    out.set_proxy_id(proxy.proxy_id.value());
     out.set_own(proxy.own);
     const ProxyPresenceEntry& state = proxy.state;
     put_vec3(state.position, *out.mutable_position());

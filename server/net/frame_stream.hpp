@@ -37,7 +37,7 @@ struct FrameOptions {
 struct ProxyView {
   ClientId client = 0;
   std::string client_name;
-  std::uint32_t proxy_id = 0;
+  ProxyId proxy_id = 0;
   bool own = false;  ///< the subscriber's
   ProxyPresenceEntry state;
 };

@@ -92,7 +92,7 @@ void handle_open_proxy(Session& session, std::uint64_t id, const v1::OpenProxy& 
     }
     local_model = *asked;
   }
-  const std::uint32_t proxy = session.open_proxy(*settings);
+  const ProxyId proxy = session.open_proxy(*settings);
   if (proxy == 0) {
     session.send_error(id, v1::ERROR_CODE_LIMIT_EXCEEDED, too_many_proxies(session));
     return;
@@ -100,7 +100,7 @@ void handle_open_proxy(Session& session, std::uint64_t id, const v1::OpenProxy& 
   if (local_model) session.proxy(proxy)->enable_local_model(*local_model);
   reply(session, id, [&](v1::ServerMessage& message) {
     v1::ProxyOpened& opened = *message.mutable_proxy_opened();
-    opened.set_proxy_id(proxy);
+    opened.set_proxy_id(proxy.value());
     fill_proxy_settings(*settings, *opened.mutable_settings());
     if (local_model) {
       opened.mutable_local_model()->set_radius(local_model->radius);

@@ -70,10 +70,10 @@ void reply(Session& session, std::uint64_t id, Fill&& fill) {
 /// Runs a scene's job on the loader thread, keeping the scene alive until it has run.
 Offload on_loader(ServerContext& context, std::shared_ptr<SceneRunner> scene);
 
-/// The ids a request lists, sorted, each once.
-template <class Repeated>
-std::vector<typename Repeated::value_type> sorted_unique(const Repeated& ids) {
-  std::vector<typename Repeated::value_type> out(ids.begin(), ids.end());
+/// The ids a request lists, sorted, each once, as `Id`s (the wire's integers by default).
+template <class Repeated, class Id = typename Repeated::value_type>
+std::vector<Id> sorted_unique(const Repeated& ids) {
+  std::vector<Id> out(ids.begin(), ids.end());
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;

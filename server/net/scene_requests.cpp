@@ -87,8 +87,8 @@ void start_scene(Session& session, std::uint64_t id, DocumentSource read, bool s
         pending->fail(v1::ERROR_CODE_CANCELLED, "the scene stopped before it could be joined");
         return;
       }
-      context.log.info(session->who() + " loaded scene " + std::to_string(scene_id) + " \"" +
-                       runner->name() + "\"" + (runner->access().shared ? ", shared" : "") +
+      context.log.info(session->who() + " loaded scene " + std::to_string(scene_id.value()) +
+                       " \"" + runner->name() + "\"" + (runner->access().shared ? ", shared" : "") +
                        (runner->access().persistent ? ", kept" : ""));
       v1::ServerMessage message;
       fill_scene_loaded(scene_id, *runner, *message.mutable_scene_loaded());
@@ -106,13 +106,13 @@ Offload on_loader(ServerContext& context, std::shared_ptr<SceneRunner> scene) {
 }
 
 void fill_scene_loaded(SceneId scene_id, const SceneRunner& scene, v1::SceneLoaded& out) {
-  out.set_scene_id(scene_id);
+  out.set_scene_id(scene_id.value());
   out.set_name(scene.name());
   for (const BodyInfo& body : scene.bodies()->bodies) fill_body_info(body, *out.add_bodies());
   out.set_shared(scene.access().shared);
   out.set_paused(scene.stats().paused);
   out.set_time_step(scene.time_step());
-  out.set_owner(scene.access().owner);
+  out.set_owner(scene.access().owner.value());
 }
 
 void handle_list_scenes(Session& session, std::uint64_t id) {
@@ -129,7 +129,7 @@ void handle_list_scenes(Session& session, std::uint64_t id) {
     for (const auto& [scene_id, runner] : context.scenes.list()) {
       v1::RunningScene& running = *list.add_running();
       const RunnerStats stats = runner->stats();
-      running.set_scene_id(scene_id);
+      running.set_scene_id(scene_id.value());
       running.set_name(runner->name());
       running.set_clients(static_cast<std::uint32_t>(runner->members().count()));
       running.set_bodies(static_cast<std::uint32_t>(runner->bodies()->bodies.size()));
@@ -206,8 +206,9 @@ void handle_join_scene(Session& session, std::uint64_t id, const v1::JoinScene& 
 void handle_leave_scene(Session& session, std::uint64_t id) {
   const SceneId left = session.scene_id();
   session.leave_scene();
-  reply(session, id,
-        [&](v1::ServerMessage& message) { message.mutable_scene_left()->set_scene_id(left); });
+  reply(session, id, [&](v1::ServerMessage& message) {
+    message.mutable_scene_left()->set_scene_id(left.value());
+  });
 }
 
 void handle_destroy_scene(Session& session, std::uint64_t id, const v1::DestroyScene& destroy) {
@@ -219,7 +220,8 @@ void handle_destroy_scene(Session& session, std::uint64_t id, const v1::DestroyS
   }
   const auto scene = context.scenes.find(scene_id);
   if (!scene) {
-    session.send_error(id, v1::ERROR_CODE_UNKNOWN_ID, "no scene " + std::to_string(scene_id));
+    session.send_error(id, v1::ERROR_CODE_UNKNOWN_ID,
+                       "no scene " + std::to_string(scene_id.value()));
     return;
   }
   if (scene->access().owner == 0) {
@@ -238,10 +240,10 @@ void handle_destroy_scene(Session& session, std::uint64_t id, const v1::DestroyS
   scene->members().broadcast_to_all(std::move(destroyed));
   if (session.scene_id() == scene_id) session.leave_scene();
   context.scenes.remove(scene_id);
-  context.log.info(session.who() + " destroyed scene " + std::to_string(scene_id) + " \"" +
+  context.log.info(session.who() + " destroyed scene " + std::to_string(scene_id.value()) + " \"" +
                    scene->name() + "\"");
   reply(session, id, [&](v1::ServerMessage& message) {
-    message.mutable_scene_destroyed()->set_scene_id(scene_id);
+    message.mutable_scene_destroyed()->set_scene_id(scene_id.value());
   });
 }
 

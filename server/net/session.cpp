@@ -122,7 +122,7 @@ void Session::close_gracefully() {
     if (self->closed_) return;
     v1::ServerMessage goodbye;
     v1::SceneEvent& event = *goodbye.mutable_event();
-    event.set_scene_id(self->scene_id_);
+    event.set_scene_id(self->scene_id_.value());
     event.set_kind(v1::EVENT_KIND_SERVER_SHUTDOWN);
     self->send(goodbye);
     self->close_after_replies();
@@ -166,7 +166,7 @@ void Session::on_backlog_exceeded(std::size_t max_backlog_bytes) {
 }
 
 std::string Session::who() const {
-  std::string text = "client " + std::to_string(id_);
+  std::string text = "client " + std::to_string(id_.value());
   if (greeted_) text += " \"" + client_name_ + "\"";
   return text;
 }
@@ -342,7 +342,7 @@ void Session::leave_scene(bool quietly) {
   forget_scene();
   // a scene a client loaded lives as long as some session is in it
   if (context_.scenes.leave(left, id_)) {
-    context_.log.info("scene " + std::to_string(left) + " \"" + name +
+    context_.log.info("scene " + std::to_string(left.value()) + " \"" + name +
                       "\" removed: its last client left");
   }
 }
@@ -357,30 +357,26 @@ void Session::on_scene_event(SceneId scene, const SceneEvent& event) {
   if (event.kind == SceneEvent::Kind::kDestroyed) forget_scene();
 }
 
-std::uint64_t Session::key_of(std::uint32_t proxy_id) const {
-  return (std::uint64_t{id_} << 32) | proxy_id;
-}
-
 void Session::close_proxies() {
   proxies_.clear();
 }
 
-ProxyHandle* Session::proxy(std::uint32_t proxy_id) {
+ProxyHandle* Session::proxy(ProxyId proxy_id) {
   const auto it = proxies_.find(proxy_id);
   if (it != proxies_.end()) return &it->second;
   if (proxies_.size() >= context_.options.max_proxies_per_session) return nullptr;
-  return &proxies_.emplace(proxy_id, scene_->open_proxy(key_of(proxy_id))).first->second;
+  return &proxies_.emplace(proxy_id, scene_->open_proxy({id_, proxy_id})).first->second;
 }
 
-std::uint32_t Session::open_proxy(const ProxySettings& settings) {
+ProxyId Session::open_proxy(const ProxySettings& settings) {
   if (proxies_.size() >= context_.options.max_proxies_per_session) return 0;
   std::uint32_t id = 1;
   while (proxies_.contains(id)) ++id;
-  proxies_.emplace(id, scene_->open_proxy(key_of(id), settings));
+  proxies_.emplace(id, scene_->open_proxy({id_, id}, settings));
   return id;
 }
 
-bool Session::close_proxy(std::uint32_t proxy_id) {
+bool Session::close_proxy(ProxyId proxy_id) {
   const auto it = proxies_.find(proxy_id);
   if (it == proxies_.end()) return false;
   proxies_.erase(it);

@@ -21,6 +21,7 @@
 #include "net/server_context.hpp"
 #include "net/session_frames.hpp"
 #include "net/transport.hpp"
+#include "runtime/proxy_key.hpp"
 
 namespace felt::net {
 
@@ -84,10 +85,10 @@ class Session final : public std::enable_shared_from_this<Session>,
 
   /// The open proxy `proxy_id`, opening it with the scene's settings if it is not open; null
   /// when the session already has as many proxies as it may.
-  ProxyHandle* proxy(std::uint32_t proxy_id);
+  ProxyHandle* proxy(ProxyId proxy_id);
   /// Opens a proxy with `settings` under a fresh id; 0 when the session has as many as it may.
-  std::uint32_t open_proxy(const ProxySettings& settings);
-  bool close_proxy(std::uint32_t proxy_id);
+  ProxyId open_proxy(const ProxySettings& settings);
+  bool close_proxy(ProxyId proxy_id);
   std::size_t open_proxies() const { return proxies_.size(); }
   /// Proxies not updated for a second before `now` let go of the surface (and snapshots) they
   /// kept.
@@ -141,7 +142,6 @@ class Session final : public std::enable_shared_from_this<Session>,
   void announce(SceneEvent::Kind kind);
   /// Lets go of the scene: proxies, membership, frames (the registry is the caller's).
   void forget_scene();
-  std::uint64_t key_of(std::uint32_t proxy_id) const;
   void close_proxies();
   /// Logs a refusal of a limit, at most one a second per session (the rest are counted and
   /// said with the next), so that a client that keeps hitting a limit cannot flood the log.
@@ -168,8 +168,8 @@ class Session final : public std::enable_shared_from_this<Session>,
   std::string client_name_;
   SceneId scene_id_ = 0;
   std::shared_ptr<SceneRunner> scene_;
-  std::shared_ptr<Membership> membership_;        ///< how the scene reaches this session
-  std::map<std::uint32_t, ProxyHandle> proxies_;  ///< after scene_: closed before it goes
+  std::shared_ptr<Membership> membership_;  ///< how the scene reaches this session
+  std::map<ProxyId, ProxyHandle> proxies_;  ///< after scene_: closed before it goes
   SteadyClock::time_point last_refusal_logged_{};
   std::uint64_t refusals_not_logged_ = 0;
 };

@@ -124,9 +124,9 @@ void SessionFrames::tick() {
 std::vector<ProxyView> SessionFrames::proxies() const {
   std::vector<ProxyView> out;
   for (const ProxyPresenceEntry& entry : scene_->presence(kPresenceWindow)) {
-    const auto client = static_cast<ClientId>(entry.key >> 32);
-    out.push_back({client, scene_->members().name_of(client),
-                   static_cast<std::uint32_t>(entry.key & 0xffffffffu), client == client_, entry});
+    const ClientId client = entry.key.client;
+    out.push_back(
+        {client, scene_->members().name_of(client), entry.key.proxy, client == client_, entry});
   }
   return out;
 }

@@ -77,8 +77,8 @@ void handle_hello(Session& session, std::uint64_t id, const v1::Hello& hello) {
     welcome->set_protocol_version(kProtocolVersion);
     welcome->set_server_version(context.server_version);
     for (const char* capability : kCapabilities) welcome->add_capabilities(capability);
-    welcome->set_scene_id(session.scene_id());
-    welcome->set_client_id(session.client_id());
+    welcome->set_scene_id(session.scene_id().value());
+    welcome->set_client_id(session.client_id().value());
     fill_limits(context.options, *welcome->mutable_limits());
   });
 }
@@ -103,7 +103,7 @@ void handle_get_stats(Session& session, std::uint64_t id) {
       const RunnerStats runner = scene->stats();
       const auto bodies = scene->bodies();
       v1::SceneStats& out = *stats.mutable_scene();
-      out.set_scene_id(session.scene_id());
+      out.set_scene_id(session.scene_id().value());
       out.set_steps(runner.steps);
       out.set_sim_time(runner.sim_time);
       out.set_real_time_factor(runner.real_time_factor);
@@ -121,7 +121,7 @@ void handle_get_stats(Session& session, std::uint64_t id) {
       out.set_servo_mean_tick_us(runner.servo.mean_tick_us);
       for (const BodyStats& body : runner.bodies) {
         v1::BodyStats& entry = *out.add_body_stats();
-        entry.set_body_id(body.body_id);
+        entry.set_body_id(body.body_id.value());
         entry.set_kind(body.kind);
         entry.set_integrator(body.integrator);
         entry.set_max_strain(body.max_strain);
@@ -138,7 +138,7 @@ void handle_get_stats(Session& session, std::uint64_t id) {
     }
     v1::SessionStats& own = *stats.mutable_session();
     const Session::Counters counters = session.counters();
-    own.set_client_id(session.client_id());
+    own.set_client_id(session.client_id().value());
     own.set_requests(counters.requests);
     own.set_frames_sent(counters.frames_sent);
     own.set_frames_skipped(counters.frames_skipped);

@@ -101,12 +101,12 @@ v1::ErrorCode error_code(RunnerError::Code code) {
 }
 
 void fill_body_info(const BodyInfo& body, v1::BodyInfo& out) {
-  out.set_body_id(body.body_id);
+  out.set_body_id(body.body_id.value());
   out.set_name(body.name);
   out.set_kind(body.kind);
   out.set_particles(body.particles);
   out.set_triangles(body.triangles);
-  out.set_owner(body.owner);
+  out.set_owner(body.owner.value());
   out.set_nodes(body.nodes);
   if (body.collider) fill_collider(*body.collider, *out.mutable_collider());
 }
@@ -136,21 +136,21 @@ void fill_collider(const Collider& collider, v1::ColliderShape& out) {
 }
 
 void fill_event(SceneId scene, const SceneEvent& event, v1::SceneEvent& out) {
-  out.set_scene_id(scene);
+  out.set_scene_id(scene.value());
   out.set_sequence(event.sequence);
   out.set_kind(event_kind(event.kind));
   out.set_step(event.step);
   out.set_sim_time(event.sim_time);
   out.set_count(event.count);
-  for (BodyId id : event.body_ids) out.add_body_ids(id);
-  out.set_client_id(event.client);
+  for (BodyId id : event.body_ids) out.add_body_ids(id.value());
+  out.set_client_id(event.client.value());
   out.set_client_name(event.client_name);
   for (const BodyInfo& body : event.bodies) fill_body_info(body, *out.add_bodies());
   out.set_time_scale(event.time_scale);
 }
 
 void fill_status(SceneId scene, const SceneStatus& status, v1::SceneStatus& out) {
-  out.set_scene_id(scene);
+  out.set_scene_id(scene.value());
   out.set_step(status.step);
   out.set_sim_time(status.sim_time);
   out.set_paused(status.paused);
@@ -173,7 +173,7 @@ void fill_state(const WorldState& state, Real time_step, v1::SceneState& out) {
   out.set_sim_time(static_cast<double>(state.step) * time_step);
   for (const BodyMotionState& body : state.bodies) {
     v1::BodyState& b = *out.add_bodies();
-    b.set_body_id(body.body_id);
+    b.set_body_id(body.body_id.value());
     put_vectors(body.positions, *b.mutable_positions());
     put_vectors(body.velocities, *b.mutable_velocities());
     put_vectors(body.previous_positions, *b.mutable_previous_positions());

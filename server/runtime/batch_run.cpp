@@ -79,7 +79,7 @@ class BatchServo {
   BatchServo(const Scene& scene, const BatchHaptics& options)
       : options_(options),
         devices_(options.replay ? devices_from_recording(*options.replay) : scene.devices,
-                 scene.haptics, 0),
+                 scene.haptics),
         kind_(scene.haptic_structure),
         ticks_per_step_(std::max<std::uint64_t>(
             1, static_cast<std::uint64_t>(

@@ -35,7 +35,7 @@ BodyInfo describe_body(const World& world, BodyId id, ClientId owner) {
     info.nodes = static_cast<std::uint32_t>(solid->node_count());
     info.solid_model = solid->material().model;
   } else {
-    info.name = "collider" + std::to_string(id);
+    info.name = "collider" + std::to_string(id.value());
     info.kind = "collider";
     info.collider = world.colliders()[world.body_ref(id).index];
   }

@@ -8,11 +8,9 @@
 #include <vector>
 
 #include "core/world/world.hpp"
+#include "runtime/client_id.hpp"
 
 namespace felt {
-
-/// Names a connected client (a session); 0 is the server itself.
-using ClientId = std::uint32_t;
 
 /// What a client is told about a body.
 struct BodyInfo {

@@ -22,7 +22,7 @@ HapticSurface HapticFrame::surface_at(Real alpha) const {
     const BodySnapshot& newer = to->bodies[b];
     const BodySnapshot& older = *this->older[b];
     HapticBody& body = surface.bodies.emplace_back();
-    body.body_id = newer.body_id;
+    body.body_id = newer.body_id.value();
     body.triangles = newer.triangles();
     body.from = older.positions;
     body.to = newer.positions;

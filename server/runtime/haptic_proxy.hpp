@@ -13,6 +13,7 @@
 #include "core/haptics/surface_stiffness_estimate.hpp"
 #include "runtime/haptic_frame.hpp"
 #include "runtime/local_model_feed.hpp"
+#include "runtime/proxy_key.hpp"
 #include "runtime/reaction_accumulator.hpp"
 
 namespace felt {
@@ -55,9 +56,9 @@ struct ProxyOutput {
 class HapticProxy {
  public:
   /// `key` names the proxy to the scene's reaction accumulator.
-  HapticProxy(std::uint64_t key, const ProxySettings& settings) : key_(key), settings_(settings) {}
+  HapticProxy(ProxyKey key, const ProxySettings& settings) : key_(key), settings_(settings) {}
 
-  std::uint64_t key() const { return key_; }
+  ProxyKey key() const { return key_; }
   const ProxySettings& settings() const { return settings_; }
   /// Makes this a local-model proxy: its client renders forces against models of the surface.
   void enable_local_model(const LocalModelRequest& request) { local_model_.emplace(request); }
@@ -112,7 +113,7 @@ class HapticProxy {
   void estimate_stiffness(const HapticSurface& surface, const LocalContact& local, const Vec3& push,
                           ProxyOutput& out);
 
-  std::uint64_t key_;
+  ProxyKey key_;
   ProxySettings settings_;
   std::optional<GodObject> god_;
   std::optional<Grab> grab_;

@@ -8,7 +8,7 @@ namespace felt {
 namespace {
 
 /// Adds `ids` to the sorted `bodies`, each once.
-void add_once(std::vector<BodyId>& bodies, const std::vector<std::uint32_t>& ids) {
+void add_once(std::vector<BodyId>& bodies, const std::vector<BodyId>& ids) {
   for (BodyId id : ids) {
     const auto at = std::lower_bound(bodies.begin(), bodies.end(), id);
     if (at == bodies.end() || *at != id) bodies.insert(at, id);

@@ -15,7 +15,7 @@ void ProxyPresence::update(const ProxyPresenceEntry& entry) {
   }
 }
 
-void ProxyPresence::forget(std::uint64_t key) {
+void ProxyPresence::forget(ProxyKey key) {
   std::lock_guard lock(mutex_);
   std::erase_if(entries_, [key](const ProxyPresenceEntry& e) { return e.key == key; });
 }

@@ -9,11 +9,12 @@
 #include <vector>
 
 #include "core/math/types.hpp"
+#include "runtime/proxy_key.hpp"
 
 namespace felt {
 
 struct ProxyPresenceEntry {
-  std::uint64_t key = 0;         ///< the proxy's key: its client in the high 32 bits, its id low
+  ProxyKey key;
   Vec3 position = Vec3::Zero();  ///< the god-object's centre
   Real radius = 0;
   bool in_contact = false;
@@ -26,7 +27,7 @@ struct ProxyPresenceEntry {
 class ProxyPresence {
  public:
   void update(const ProxyPresenceEntry& entry);
-  void forget(std::uint64_t key);
+  void forget(ProxyKey key);
   /// The proxies updated since `since`.
   std::vector<ProxyPresenceEntry> since(std::chrono::steady_clock::time_point since) const;
 

@@ -81,7 +81,7 @@ Real ReactionAccumulator::spring_scale(const World& world, ProxyReaction& reacti
   return scale;
 }
 
-void ReactionAccumulator::record(std::uint64_t proxy_key, const ProxySample& sample) {
+void ReactionAccumulator::record(ProxyKey proxy_key, const ProxySample& sample) {
   std::lock_guard lock(mutex_);
   ProxyReaction& reaction = reactions_[proxy_key];
   ++reaction.samples;
@@ -113,7 +113,7 @@ void ReactionAccumulator::record(std::uint64_t proxy_key, const ProxySample& sam
   }
 }
 
-void ReactionAccumulator::forget(std::uint64_t proxy_key) {
+void ReactionAccumulator::forget(ProxyKey proxy_key) {
   std::lock_guard lock(mutex_);
   const auto it = reactions_.find(proxy_key);
   if (it != reactions_.end()) it->second.closed = true;

@@ -27,12 +27,13 @@
 #include <vector>
 
 #include "core/world/world.hpp"
+#include "runtime/proxy_key.hpp"
 
 namespace felt {
 
 /// A grabbed vertex tied to the device by a damped spring.
 struct GrabSpring {
-  std::uint32_t body_id = 0;
+  BodyId body_id = 0;
   std::uint32_t vertex = 0;
   Vec3 target = Vec3::Zero();  ///< the device
   Real stiffness = 0;          ///< N/m
@@ -63,7 +64,7 @@ struct ProxySample {
   /// a push of `force` onto the triangle with particles `corners` of body `body_id`, at the
   /// point with barycentric coordinates `barycentric`
   struct Push {
-    std::uint32_t body_id = 0;
+    BodyId body_id = 0;
     Triangle corners{};
     Vec3 barycentric = Vec3::Zero();
     Vec3 force = Vec3::Zero();
@@ -83,10 +84,10 @@ struct ProxySample {
 class ReactionAccumulator {
  public:
   /// Records an update of proxy `proxy_key` (one lock: this is on the haptic path).
-  void record(std::uint64_t proxy_key, const ProxySample& sample);
+  void record(ProxyKey proxy_key, const ProxySample& sample);
 
   /// Drops a closed proxy after the next step has applied what it pushed last.
-  void forget(std::uint64_t proxy_key);
+  void forget(ProxyKey proxy_key);
 
   /// Applies each proxy's mean force since the last step (or, without new updates, the mean it
   /// applied last) as external forces on the bodies, and its sphere as a collider for the
@@ -95,7 +96,7 @@ class ReactionAccumulator {
 
  private:
   struct ParticleForce {
-    std::uint32_t body_id;
+    BodyId body_id;
     std::uint32_t particle;
     Vec3 force;
   };
@@ -131,10 +132,10 @@ class ReactionAccumulator {
   static constexpr std::size_t kMaxParticlesPerProxy = 96;
 
   std::mutex mutex_;
-  std::unordered_map<std::uint64_t, ProxyReaction> reactions_;
+  std::unordered_map<ProxyKey, ProxyReaction> reactions_;
   std::vector<Collider> spheres_;  ///< scratch for apply_and_clear
   /// (body, particle) of the anchors the last apply_and_clear set, removed by the next
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> anchored_;
+  std::vector<std::pair<BodyId, std::uint32_t>> anchored_;
 };
 
 }  // namespace felt

@@ -6,10 +6,13 @@ namespace felt {
 namespace {
 
 std::uint32_t index_of(SceneId id) {
-  return static_cast<std::uint32_t>(id & 0xffffffffu);
+  return static_cast<std::uint32_t>(id.value() & 0xffffffffu);
 }
 std::uint32_t generation_of(SceneId id) {
-  return static_cast<std::uint32_t>(id >> 32);
+  return static_cast<std::uint32_t>(id.value() >> 32);
+}
+SceneId id_of(std::uint32_t generation, std::uint32_t index) {
+  return (std::uint64_t{generation} << 32) | index;
 }
 
 }  // namespace
@@ -59,7 +62,7 @@ SceneId SceneRegistry::add(std::shared_ptr<SceneRunner> runner,
   ++free->generation;
   free->runner = std::move(runner);
   const auto index = static_cast<std::uint32_t>(free - slots_.begin());
-  return (SceneId{free->generation} << 32) | index;
+  return id_of(free->generation, index);
 }
 
 std::shared_ptr<SceneRunner> SceneRegistry::find(SceneId id) const {
@@ -128,7 +131,7 @@ std::vector<std::pair<SceneId, std::shared_ptr<SceneRunner>>> SceneRegistry::lis
   std::vector<std::pair<SceneId, std::shared_ptr<SceneRunner>>> scenes;
   for (std::uint32_t i = 0; i < slots_.size(); ++i) {
     if (slots_[i].runner) {
-      scenes.emplace_back((SceneId{slots_[i].generation} << 32) | i, slots_[i].runner);
+      scenes.emplace_back(id_of(slots_[i].generation, i), slots_[i].runner);
     }
   }
   return scenes;

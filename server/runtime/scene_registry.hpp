@@ -11,12 +11,13 @@
 #include <utility>
 #include <vector>
 
+#include "ids/strong_id.hpp"
 #include "runtime/scene_runner.hpp"
 
 namespace felt {
 
 /// index in the low 32 bits, generation in the high 32; 0 is never a valid id.
-using SceneId = std::uint64_t;
+using SceneId = StrongId<struct SceneIdTag, std::uint64_t>;
 
 class SceneRegistry {
  public:

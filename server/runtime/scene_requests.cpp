@@ -259,8 +259,8 @@ void SceneRequests::add_body(ClientId by, const Offload& build_on,
 void SceneRequests::remove_body(ClientId by, BodyId body, Completion<BodyId> done) {
   request<BodyId>(std::move(done), [this, by, body](Scene& scene, Completion<BodyId>& done) {
     if (!scene.world.contains(body)) {
-      done(
-          std::unexpected(error(RunnerError::Code::kUnknownId, "no body " + std::to_string(body))));
+      done(std::unexpected(
+          error(RunnerError::Code::kUnknownId, "no body " + std::to_string(body.value()))));
       return;
     }
     scene.world.remove_body(body);
@@ -279,8 +279,8 @@ void SceneRequests::change_body(ClientId by, BodyId body, std::function<void(Wor
                                        Scene& scene, Completion<BodyId>& done) {
     // removed by a request queued before this one, after this one was checked
     if (!scene.world.contains(body)) {
-      done(std::unexpected(
-          error(RunnerError::Code::kUnknownId, "no body " + std::to_string(body) + " any more")));
+      done(std::unexpected(error(RunnerError::Code::kUnknownId,
+                                 "no body " + std::to_string(body.value()) + " any more")));
       return;
     }
     change(scene.world);

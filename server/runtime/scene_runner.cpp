@@ -45,7 +45,7 @@ SceneRunner::SceneRunner(Scene scene, SceneAccess access, SceneReloader reload, 
   if (!built.devices.empty()) {
     // sessions key their proxies by session id (from 1) in the high half: 0 is the servo's
     servo_ = std::make_unique<HapticServo>(
-        ScriptedDevices(built.devices, haptics_, 0), built.servo_rate,
+        ScriptedDevices(built.devices, haptics_), built.servo_rate,
         [this] { return haptic_frames_.current(); }, reactions_);
   }
 }

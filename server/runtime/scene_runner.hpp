@@ -150,8 +150,8 @@ class SceneRunner {
 
   /// A new proxy known to the scene as `key`, with the scene's haptics settings or `settings`:
   /// the handle updates it (render) and closes it when it goes (close_proxy).
-  ProxyHandle open_proxy(std::uint64_t key) { return {*this, HapticProxy(key, haptics_)}; }
-  ProxyHandle open_proxy(std::uint64_t key, const ProxySettings& settings) {
+  ProxyHandle open_proxy(ProxyKey key) { return {*this, HapticProxy(key, haptics_)}; }
+  ProxyHandle open_proxy(ProxyKey key, const ProxySettings& settings) {
     return {*this, HapticProxy(key, settings)};
   }
   /// The proxies rendered in the last `within`, as everyone in the scene may see them.

@@ -18,12 +18,12 @@ std::vector<ScriptedDevice> devices_from_recording(const std::vector<HapticRecor
 }
 
 ScriptedDevices::ScriptedDevices(const std::vector<ScriptedDevice>& devices,
-                                 const ProxySettings& settings, std::uint64_t first_key)
+                                 const ProxySettings& settings)
     : devices_(devices), latest_(devices.size()) {
   proxies_.reserve(devices.size());
   for (std::size_t i = 0; i < devices.size(); ++i) {
-    proxies_.emplace_back(first_key + i, settings);
     latest_[i].device = static_cast<std::uint32_t>(i);
+    proxies_.emplace_back(ProxyKey{0, latest_[i].device}, settings);
   }
 }
 

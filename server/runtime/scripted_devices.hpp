@@ -18,10 +18,8 @@ std::vector<ScriptedDevice> devices_from_recording(const std::vector<HapticRecor
 
 class ScriptedDevices {
  public:
-  /// Proxies for `devices` with `settings`, known to the reaction accumulator by keys from
-  /// `first_key` on.
-  ScriptedDevices(const std::vector<ScriptedDevice>& devices, const ProxySettings& settings,
-                  std::uint64_t first_key);
+  /// Proxies for `devices` with `settings`: the server's own (client 0), numbered as the devices.
+  ScriptedDevices(const std::vector<ScriptedDevice>& devices, const ProxySettings& settings);
 
   bool empty() const { return devices_.empty(); }
   std::size_t size() const { return devices_.size(); }

@@ -86,7 +86,7 @@ class SimulatedServer {
   SimulatedServer(Scene scene, const RemoteCase& c)
       : scene_(std::move(scene)),
         step_(nanoseconds(scene_.world.settings().time_step)),
-        proxy_(1, scene_.haptics) {
+        proxy_(ProxyKey{0, 1}, scene_.haptics) {
     if (c.rendering == Rendering::kLocalModel) proxy_.enable_local_model({c.model_radius, 0});
     if (c.rendering == Rendering::kLocalModel) compliance_.emplace(ComplianceWorker::Mode::kInline);
     snapshot_ = make_snapshot(scene_.world, nullptr, compliance());

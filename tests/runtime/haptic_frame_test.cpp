@@ -109,7 +109,7 @@ TEST(HapticFrame, AKeptSurfaceHoldsItsSnapshotsAfterTheFrameIsReused) {
 TEST(HapticFrame, AnIdleProxyLetsGoOfTheSnapshotsItKept) {
   const auto surface = square_cloth();
   ReactionAccumulator reactions;
-  HapticProxy proxy(1, ProxySettings{});
+  HapticProxy proxy(ProxyKey{0, 1}, ProxySettings{});
   std::weak_ptr<const SceneSnapshot> kept;
   {
     Publisher publisher;
@@ -125,7 +125,7 @@ TEST(HapticFrame, AnIdleProxyLetsGoOfTheSnapshotsItKept) {
   proxy.forget_surface_if_idle(SteadyClock::now() + std::chrono::seconds(2),
                                std::chrono::seconds(1));
   EXPECT_TRUE(kept.expired());
-  reactions.forget(1);
+  reactions.forget(ProxyKey{0, 1});
 }
 
 // A new proxy's first update, overlapping the cloth or not, comes out the same whatever the
@@ -142,11 +142,11 @@ TEST(HapticFrame, ANewProxysFirstContactIsTheSameWithEveryStructureAsWithBruteFo
   const auto reference =
       make_haptic_frame(bumped, nullptr, nullptr, TriangleQueryKind::kBruteForce, now);
   ReactionAccumulator reactions;
-  std::uint64_t key = 0;
+  std::uint32_t key = 0;
   const auto first_update = [&](const HapticFrame& frame, const Vec3& device) {
-    HapticProxy proxy(++key, settings);
+    HapticProxy proxy(ProxyKey{0, ++key}, settings);
     const ProxyOutput out = proxy.update(frame.surface_at(1), 0, device, 0, reactions);
-    reactions.forget(key);
+    reactions.forget(ProxyKey{0, key});
     return out.contact;
   };
   int overlapping = 0;
@@ -225,7 +225,7 @@ TEST(HapticFrame, ALocalModelAfterAStallShowsItsSnapshotWhenPublished) {
   const HapticFrame& frame = publisher.publish(moved);
   ASSERT_EQ(frame.interval, std::chrono::milliseconds(310));
 
-  HapticProxy proxy(1, ProxySettings{});
+  HapticProxy proxy(ProxyKey{0, 1}, ProxySettings{});
   proxy.enable_local_model({.radius = 0.2, .rate_hz = 0});
   ReactionAccumulator reactions;
   const SteadyClock::time_point now = frame.published + std::chrono::milliseconds(1);

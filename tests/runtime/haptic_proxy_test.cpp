@@ -24,7 +24,7 @@ TEST(HapticProxy, AGrabHoldsThroughDevicePositionsThatAreNoReading) {
                                        TriangleQueryKind::kBvhAabb4, SteadyClock::now());
   const HapticSurface surface = frame->surface_at(1);
   ReactionAccumulator reactions;
-  HapticProxy proxy(1, scene.haptics);
+  HapticProxy proxy(ProxyKey{0, 1}, scene.haptics);
   const Vec3 above(0.02, 0.2, 0.03);
   const Vec3 pressed(0.02, 0.04, 0.03);  // the sphere 1 cm into the cloth
   for (int i = 0; i <= 20; ++i)
@@ -55,7 +55,7 @@ TEST(HapticProxy, AGrabHoldsThroughDevicePositionsThatAreNoReading) {
   EXPECT_LT(out.contact.force.y(), -9);
   reactions.apply_and_clear(scene.world);
   EXPECT_EQ(scene.world.step().flags, StepFlags{});
-  reactions.forget(1);
+  reactions.forget(ProxyKey{0, 1});
 }
 
 // Issue 26: a local-model proxy's body takes the reaction of the contact the client's renderer
@@ -66,7 +66,7 @@ TEST(HapticProxy, ALocalContactPushesTheTriangleTheClientFelt) {
     const auto frame = make_haptic_frame(make_snapshot(scene.world), nullptr, nullptr,
                                          TriangleQueryKind::kBvhAabb4, SteadyClock::now());
     ReactionAccumulator reactions;
-    HapticProxy proxy(1, scene.haptics);
+    HapticProxy proxy(ProxyKey{0, 1}, scene.haptics);
     // the server's proxy is free, 20 cm above the cloth
     const ProxyOutput out =
         proxy.update(frame->surface_at(1), 1e-3, Vec3(0.5, 0.2, 0.5), 0, reactions, local);
@@ -80,7 +80,7 @@ TEST(HapticProxy, ALocalContactPushesTheTriangleTheClientFelt) {
   const std::vector<Triangle>& triangles = make_snapshot(probe.world)->bodies[0].triangles();
   LocalContact felt;
   felt.in_contact = true;
-  felt.body_id = make_snapshot(probe.world)->bodies[0].body_id;
+  felt.body_id = make_snapshot(probe.world)->bodies[0].body_id.value();
   felt.triangle = static_cast<std::int32_t>(triangles.size() / 2 + 5);
   felt.barycentric = Vec3::Constant(1.0 / 3);
   felt.proxy = Vec3(0.5, 0.3, 0.5);  // 10 cm above the device: 40 N, clamped to 10 N

@@ -14,10 +14,10 @@
 namespace felt {
 namespace {
 
-constexpr Real kStretch = 0.01;      // m: 4 N at the proxy's 400 N/m
-const Vec3 kPush(0, -4, 0);          // on the body: down, away from a proxy above it
-constexpr Real kMaxForce = 10;       // N
-constexpr std::uint64_t kProxy = 1;  // the accumulator's key
+constexpr Real kStretch = 0.01;  // m: 4 N at the proxy's 400 N/m
+const Vec3 kPush(0, -4, 0);      // on the body: down, away from a proxy above it
+constexpr Real kMaxForce = 10;   // N
+const ProxyKey kProxy{0, 1};     // the accumulator's key
 
 /// A flat sheet (y = 0, no gravity) and one triangle in its middle, touched at its centroid.
 struct Sheet {

@@ -21,7 +21,7 @@ TEST(SceneRegistry, StaleIdsAreNeverReused) {
   // the slot is reused with a new generation: the old id still finds nothing
   const SceneId b = registry.add(empty_runner());
   EXPECT_NE(a, b);
-  EXPECT_EQ(a & 0xffffffffu, b & 0xffffffffu);
+  EXPECT_EQ(a.value() & 0xffffffffu, b.value() & 0xffffffffu);
   EXPECT_EQ(registry.find(a), nullptr);
   EXPECT_NE(registry.find(b), nullptr);
   EXPECT_EQ(registry.size(), 1u);

@@ -112,7 +112,7 @@ HapticContact touch(ProxyHandle& proxy, const Vec3& device) {
 TEST(SceneRunner, TouchPushesOutOfTheClothAndDentsIt) {
   ManualClock clock;
   SceneRunner runner(flat_cloth_scene(), {}, {}, {}, clock);
-  ProxyHandle proxy = runner.open_proxy(1);
+  ProxyHandle proxy = runner.open_proxy({0, 1});
   const std::uint32_t centre = 5 * 11 + 5;
   // a proxy of radius 5 cm centred 3 cm above the centre of the sheet: depth 2 cm
   const Vec3 above(0, 0.03, 0);
@@ -140,7 +140,7 @@ TEST(SceneRunner, TouchPushesOutOfTheClothAndDentsIt) {
   EXPECT_EQ(runner.stats().haptic_updates, 301u);
 
   // from below, the force points down
-  ProxyHandle other = runner.open_proxy(2);
+  ProxyHandle other = runner.open_proxy({0, 2});
   const HapticContact below = touch(other, Vec3(0.2, -0.2, 0.2));
   EXPECT_FALSE(below.in_contact);
   EXPECT_EQ(below.force, Vec3::Zero());
@@ -150,11 +150,11 @@ TEST(SceneRunner, TouchPushesOutOfTheClothAndDentsIt) {
 TEST(SceneRunner, AProxyIsClosedWhenItsHandleGoes) {
   SceneRunner runner(flat_cloth_scene());
   {
-    ProxyHandle first = runner.open_proxy(1);
+    ProxyHandle first = runner.open_proxy({0, 1});
     ASSERT_TRUE(touch(first, Vec3(0, 0.03, 0)).in_contact);
     ProxyHandle moved = std::move(first);  // the moved-from handle closes nothing
     touch(moved, Vec3(0, 0.03, 0));
-    ProxyHandle second = runner.open_proxy(2);
+    ProxyHandle second = runner.open_proxy({0, 2});
     touch(second, Vec3(0.2, 0.5, 0.2));
     EXPECT_EQ(runner.presence(1h).size(), 2u);
   }
@@ -166,7 +166,7 @@ TEST(SceneRunner, ASingleTouchKeepsPushingUntilTheNextUpdate) {
   // a device slower than the physics: its last reaction is held between its updates
   ManualClock clock;
   SceneRunner runner(flat_cloth_scene(), {}, {}, {}, clock);
-  ProxyHandle proxy = runner.open_proxy(1);
+  ProxyHandle proxy = runner.open_proxy({0, 1});
   const std::uint32_t centre = 5 * 11 + 5;
   ASSERT_TRUE(touch(proxy, Vec3(0, 0.03, 0)).in_contact);
   runner.start();
@@ -201,7 +201,7 @@ TEST(SceneRunner, AClientsArrivalHasThePhysicsThreadMakeHapticFramesBeforeItsFir
 
 TEST(SceneRunner, ForceIsClampedToTheMaximum) {
   SceneRunner runner(flat_cloth_scene());
-  ProxyHandle proxy = runner.open_proxy(1);
+  ProxyHandle proxy = runner.open_proxy({0, 1});
   // at the surface the depth is the whole radius: 400 N/m · 5 cm = 20 N, clamped to 10 N
   const HapticContact contact = touch(proxy, Vec3(0.01, 0.0001, 0.01));
   ASSERT_TRUE(contact.in_contact);

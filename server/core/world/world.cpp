@@ -29,10 +29,13 @@ constexpr std::uint32_t kSlotMask = (1u << kSlotBits) - 1;
 constexpr std::uint16_t kLastGeneration = 0xffff;
 
 std::uint32_t slot_of(BodyId id) {
-  return id & kSlotMask;
+  return id.value() & kSlotMask;
 }
 std::uint16_t generation_of(BodyId id) {
-  return static_cast<std::uint16_t>(id >> kSlotBits);
+  return static_cast<std::uint16_t>(id.value() >> kSlotBits);
+}
+BodyId id_of(std::uint16_t generation, std::uint32_t slot) {
+  return (std::uint32_t{generation} << kSlotBits) | slot;
 }
 
 }  // namespace
@@ -50,7 +53,7 @@ BodyId World::allocate(BodyRef ref) {
   free->live = true;
   free->ref = ref;
   ++live_;
-  return (BodyId{free->generation} << kSlotBits) | static_cast<BodyId>(free - slots_.begin());
+  return id_of(free->generation, static_cast<std::uint32_t>(free - slots_.begin()));
 }
 
 BodyId World::add_body(ClothBody body) {
@@ -115,7 +118,7 @@ std::vector<BodyId> World::body_ids() const {
   std::vector<BodyId> ids;
   ids.reserve(live_);
   for (std::uint32_t s = 0; s < slots_.size(); ++s) {
-    if (slots_[s].live) ids.push_back((BodyId{slots_[s].generation} << kSlotBits) | s);
+    if (slots_[s].live) ids.push_back(id_of(slots_[s].generation, s));
   }
   return ids;
 }

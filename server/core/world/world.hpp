@@ -10,6 +10,7 @@
 #include "core/collision/collider.hpp"
 #include "core/solids/solid_system.hpp"
 #include "core/step/step_flags.hpp"
+#include "ids/strong_id.hpp"
 
 namespace felt {
 
@@ -31,7 +32,7 @@ struct WorldSettings {
 /// Names a body of a world: its slot in the low 16 bits and the slot's generation in the high
 /// 16 (Box2D's b2BodyId), so the id of a removed body never names a later one. The bodies a
 /// world starts with take slots 0, 1, 2, ... at generation 0: their ids are their indices.
-using BodyId = std::uint32_t;
+using BodyId = StrongId<struct BodyIdTag, std::uint32_t>;
 
 /// What a body id names: a cloth, a soft solid or a static collider, and its index among its
 /// kind.
@@ -43,10 +44,10 @@ struct BodyRef {
 
 struct StepReport {
   StepFlags flags;
-  int max_substeps = 1;                             ///< the most substeps any body needed
-  std::vector<std::uint32_t> rescued_bodies;        ///< ids; empty (no allocation) when none
-  std::vector<std::uint32_t> unrecoverable_bodies;  ///< ids; empty (no allocation) when none
-  std::vector<std::uint32_t> over_budget_bodies;    ///< ids; empty (no allocation) when none
+  int max_substeps = 1;                      ///< the most substeps any body needed
+  std::vector<BodyId> rescued_bodies;        ///< empty (no allocation) when none
+  std::vector<BodyId> unrecoverable_bodies;  ///< empty (no allocation) when none
+  std::vector<BodyId> over_budget_bodies;    ///< empty (no allocation) when none
   StepProfile cloth_profile;  ///< where the cloths' step spent its time (ClothSystem::kStages)
   StepProfile solid_profile;  ///< and the solids' (SolidSystem::kStages)
 };

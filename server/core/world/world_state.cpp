@@ -15,7 +15,7 @@ bool all_within_bounds(const std::vector<Vec3>& vectors) {
 }
 
 std::string body_name(BodyId id) {
-  return "body " + std::to_string(id);
+  return "body " + std::to_string(id.value());
 }
 
 /// Why `body` does not fit `world`, or nothing when it does.

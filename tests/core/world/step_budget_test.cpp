@@ -48,7 +48,7 @@ TEST(StepBudget, AnAbsurdAdaptiveStepEndsWithinItsBudgetAndIsReported) {
     EXPECT_LE(work, kBudget) << "step " << n;
     if (report.flags.has(StepFlag::kOverBudget)) {
       ++over_budget;
-      EXPECT_EQ(report.over_budget_bodies, std::vector<std::uint32_t>{id});
+      EXPECT_EQ(report.over_budget_bodies, std::vector<BodyId>{id});
     }
     for (const Vec3& x : world.cloths()[0].state().x) ASSERT_TRUE(x.allFinite());
   }

@@ -83,8 +83,8 @@ TEST(WorldBodies, ARemovedIdIsNeverValidAgainAndItsSlotGetsTheNextGeneration) {
   EXPECT_EQ(world.colliders().size(), 1u);
   const BodyId again = world.add_body(small_grid_body(4, 4, 100, 0.05, "symplectic_euler"));
   EXPECT_NE(again, 0u);
-  EXPECT_EQ(again & 0xffffu, 0u);  // slot 0 again
-  EXPECT_EQ(again >> 16, 1u);      // at generation 1
+  EXPECT_EQ(again.value() & 0xffffu, 0u);  // slot 0 again
+  EXPECT_EQ(again.value() >> 16, 1u);      // at generation 1
   EXPECT_FALSE(world.contains(0));
   EXPECT_EQ(world.cloth(again)->model().particle_count(), 16u);
   EXPECT_EQ(world.cloth(0), nullptr);

@@ -92,7 +92,7 @@ TEST(World, ExplodingClothIsRolledBackAndNeverNonFinite) {
     flags |= report.flags;
     if (report.flags.has(StepFlag::kUnrecoverable)) {
       // the report names the body that failed, not its calm neighbour
-      ASSERT_EQ(report.unrecoverable_bodies, std::vector<std::uint32_t>{1}) << "step " << n;
+      ASSERT_EQ(report.unrecoverable_bodies, std::vector<BodyId>{1}) << "step " << n;
     }
     for (const Vec3& x : world.cloths()[1].state().x) ASSERT_TRUE(x.allFinite()) << "step " << n;
     for (const Vec3& v : world.cloths()[1].state().v) ASSERT_LE(v.norm(), 50.0) << "step " << n;
