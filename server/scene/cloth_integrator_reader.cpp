@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/cloth/cloth_stable_step.hpp"
+#include "core/integrate/projective_dynamics.hpp"
 #include "core/integrate/runge_kutta_integrators.hpp"
 #include "core/integrate/xpbd_integrator.hpp"
 
@@ -15,15 +16,20 @@ std::unique_ptr<Integrator> read_cloth_integrator(const ObjectReader& body) {
   std::string name = "symplectic_euler";
   std::string name_path = body.path_of("integrator");
   std::uint32_t substeps = XpbdIntegrator::kDefaultSubsteps;
+  std::uint32_t iterations = ProjectiveDynamics::kDefaultIterations;
   Real tolerance = AdaptiveRungeKutta::kDefaultTolerance;
   if (body.has("integrator") && body.at("integrator").is_object()) {
     const ObjectReader integrator(body.at("integrator"), body.path_of("integrator"),
-                                  {"name", "substeps", "tolerance"});
+                                  {"name", "substeps", "iterations", "tolerance"});
     name = integrator.string("name", name);
     name_path = integrator.path_of("name");
     substeps = integrator.count("substeps", substeps, 1, XpbdIntegrator::kMaxSubsteps);
     if (integrator.has("substeps") && name != "xpbd") {
       fail(integrator.path_of("substeps"), "applies to xpbd only");
+    }
+    iterations = integrator.count("iterations", iterations, 1, ProjectiveDynamics::kMaxIterations);
+    if (integrator.has("iterations") && name != "projective_dynamics") {
+      fail(integrator.path_of("iterations"), "applies to projective_dynamics only");
     }
     // below 1e-9 m the error control asks for more internal steps than any budget affords
     // (each one's error is then rounding); above 0.1 m it controls nothing a cloth shows
@@ -36,6 +42,9 @@ std::unique_ptr<Integrator> read_cloth_integrator(const ObjectReader& body) {
   }
   if (name == "xpbd") return std::make_unique<XpbdIntegrator>(static_cast<int>(substeps));
   if (name == "adaptive_rk") return std::make_unique<AdaptiveRungeKutta>(tolerance);
+  if (name == "projective_dynamics") {
+    return std::make_unique<ProjectiveDynamics>(static_cast<int>(iterations));
+  }
   auto integrator = make_integrator(name);
   if (!integrator) {
     std::string known;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/integrate/projective_dynamics.hpp"
 #include "core/integrate/xpbd_integrator.hpp"
 
 namespace felt {
@@ -157,7 +158,17 @@ TEST(SceneLoader, ReadsXpbdWithItsSubsteps) {
   doc["bodies"][0]["integrator"] = {{"name", "rk4"}, {"substeps", 4}};
   EXPECT_EQ(error_of(doc), "bodies[0].integrator.substeps: applies to xpbd only");
   doc["bodies"][0]["integrator"] = {{"name", "xpbd"}, {"iterations", 4}};
-  EXPECT_EQ(error_of(doc), "bodies[0].integrator.iterations: unknown key");
+  EXPECT_EQ(error_of(doc), "bodies[0].integrator.iterations: applies to projective_dynamics only");
+  doc["bodies"][0]["integrator"] = {{"name", "projective_dynamics"}, {"iterations", 101}};
+  EXPECT_EQ(error_of(doc), "bodies[0].integrator.iterations: must be between 1 and 100");
+  doc["bodies"][0]["integrator"] = {{"name", "projective_dynamics"}, {"iterations", 3}};
+  scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  EXPECT_EQ(
+      dynamic_cast<const ProjectiveDynamics&>(scene->world.cloths()[0].integrator()).iterations(),
+      3);
+  doc["bodies"][0]["integrator"] = {{"name", "xpbd"}, {"bogus", 4}};
+  EXPECT_EQ(error_of(doc), "bodies[0].integrator.bogus: unknown key");
   doc["bodies"][0]["integrator"] = {{"name", "magic"}};
   EXPECT_NE(error_of(doc).find("bodies[0].integrator.name: unknown integrator \"magic\""),
             std::string::npos);

@@ -11,7 +11,8 @@ import { EventKind } from "felt-proto/felt/v1/events_pb.js";
 
 // the names a scene's "integrator" takes (docs/scenes.md)
 const INTEGRATORS = ["explicit_euler", "symplectic_euler", "midpoint", "rk4", "adaptive_rk",
-  "verlet", "velocity_verlet", "leapfrog", "implicit_euler", "imex", "desbrun", "kang", "xpbd"];
+  "verlet", "velocity_verlet", "leapfrog", "implicit_euler", "imex", "desbrun", "kang", "xpbd",
+  "projective_dynamics"];
 const STATS_PERIOD_MS = 250;
 const FRAME_RATE_HZ = 60;
 // frames the server may have sent that this page has not yet taken in (it acknowledges each one

@@ -6,6 +6,7 @@
 #include "core/integrate/explicit_integrators.hpp"
 #include "core/integrate/imex_integrator.hpp"
 #include "core/integrate/implicit_euler.hpp"
+#include "core/integrate/projective_dynamics.hpp"
 #include "core/integrate/runge_kutta_integrators.hpp"
 #include "core/integrate/verlet_integrators.hpp"
 #include "core/integrate/xpbd_integrator.hpp"
@@ -38,6 +39,8 @@ constexpr std::array kIntegrators{
     Entry{"desbrun", &make_one<DesbrunIntegrator>, IntegratorNeeds::kLinearPairs},
     Entry{"kang", &make_one<KangIntegrator>, IntegratorNeeds::kLinearPairs},
     Entry{"xpbd", &make_one<XpbdIntegrator>, IntegratorNeeds::kDistanceConstraints},
+    Entry{"projective_dynamics", &make_one<ProjectiveDynamics>,
+          IntegratorNeeds::kDistanceConstraints},
 };
 
 }  // namespace

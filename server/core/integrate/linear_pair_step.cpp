@@ -8,14 +8,25 @@ namespace felt {
 
 void LinearPairStep::assemble(const DynamicSystem& system, const ParticleState& state, Real t,
                               Real h) {
-  const std::size_t n = state.size();
-  const auto inv_mass = system.inv_mass();
-  force_.resize(n);
-  rhs_.resize(static_cast<Eigen::Index>(n), 3);
-
   // without linear forces H = 0 and b = h f
   if (!system.linear_force_pairs(pairs_)) pairs_.clear();
+  force_.resize(state.size());
   system.compute_forces(state.x, state.v, t, force_);
+  assemble_rhs(system.inv_mass(), state, h);
+}
+
+void LinearPairStep::assemble(std::span<const Real> inv_mass, const ParticleState& state, Real h,
+                              std::span<const LinearPair> pairs, std::span<const Vec3> force) {
+  FELT_CHECK(force.size() == state.size());
+  if (!std::ranges::equal(pairs, pairs_)) pairs_.assign(pairs.begin(), pairs.end());
+  force_.assign(force.begin(), force.end());
+  assemble_rhs(inv_mass, state, h);
+}
+
+void LinearPairStep::assemble_rhs(std::span<const Real> inv_mass, const ParticleState& state,
+                                  Real h) {
+  const std::size_t n = state.size();
+  rhs_.resize(static_cast<Eigen::Index>(n), 3);
   for (std::size_t p = 0; p < n; ++p) rhs_.row(p) = (h * force_[p]).transpose();
   for (const LinearPair& pair : pairs_) {
     const Vec3 hv = (h * h * pair.k) * (state.v[pair.j] - state.v[pair.i]);  // h² (H v)_i

@@ -29,6 +29,10 @@ class LinearPairStep {
 
   /// Evaluates the system's pairs, its forces and b at `state` (time t, step h).
   void assemble(const DynamicSystem& system, const ParticleState& state, Real t, Real h);
+  /// The same with the pairs and the force f the caller gives (projective dynamics, whose f
+  /// changes from one iteration of a step to the next while the pairs stay).
+  void assemble(std::span<const Real> inv_mass, const ParticleState& state, Real h,
+                std::span<const LinearPair> pairs, std::span<const Vec3> force);
 
   /// Writes the exact Δv of the assembled equation into `dv`, factorizing the matrix first
   /// when it was last factorized for other masses, pairs or h.
@@ -47,6 +51,8 @@ class LinearPairStep {
  private:
   using SparseMatrix = Eigen::SparseMatrix<Real>;
 
+  /// b from force_ and pairs_.
+  void assemble_rhs(std::span<const Real> inv_mass, const ParticleState& state, Real h);
   /// True when the factorization was made for these masses, pairs and h.
   bool factorization_matches(std::span<const Real> inv_mass, Real h) const;
   void factorize(std::span<const Real> inv_mass, Real h);

@@ -97,7 +97,7 @@ std::optional<std::string> solid_integrator_refusal(SolidModel model, std::strin
            "take a mass-spring solid's edges implicitly)";
   }
   if (*needs == IntegratorNeeds::kDistanceConstraints) {
-    return std::string(name) + " enforces a cloth's springs as constraints; solids have none";
+    return std::string(name) + " takes a cloth's springs as constraints; solids have none";
   }
   if (*needs == IntegratorNeeds::kLinearPairs && model != SolidModel::kMassSpring) {
     return std::string(name) +
