@@ -17,10 +17,11 @@ std::unique_ptr<Integrator> read_cloth_integrator(const ObjectReader& body) {
   std::string name_path = body.path_of("integrator");
   std::uint32_t substeps = XpbdIntegrator::kDefaultSubsteps;
   std::uint32_t iterations = ProjectiveDynamics::kDefaultIterations;
+  Real chebyshev_rho = 0;
   Real tolerance = AdaptiveRungeKutta::kDefaultTolerance;
   if (body.has("integrator") && body.at("integrator").is_object()) {
     const ObjectReader integrator(body.at("integrator"), body.path_of("integrator"),
-                                  {"name", "substeps", "iterations", "tolerance"});
+                                  {"name", "substeps", "iterations", "chebyshev_rho", "tolerance"});
     name = integrator.string("name", name);
     name_path = integrator.path_of("name");
     substeps = integrator.count("substeps", substeps, 1, XpbdIntegrator::kMaxSubsteps);
@@ -28,8 +29,12 @@ std::unique_ptr<Integrator> read_cloth_integrator(const ObjectReader& body) {
       fail(integrator.path_of("substeps"), "applies to xpbd only");
     }
     iterations = integrator.count("iterations", iterations, 1, ProjectiveDynamics::kMaxIterations);
-    if (integrator.has("iterations") && name != "projective_dynamics") {
-      fail(integrator.path_of("iterations"), "applies to projective_dynamics only");
+    chebyshev_rho = integrator.ranged("chebyshev_rho", chebyshev_rho, 0,
+                                      ProjectiveDynamics::kMaxChebyshevRho, "");
+    for (const char* key : {"iterations", "chebyshev_rho"}) {
+      if (integrator.has(key) && name != "projective_dynamics") {
+        fail(integrator.path_of(key), "applies to projective_dynamics only");
+      }
     }
     // below 1e-9 m the error control asks for more internal steps than any budget affords
     // (each one's error is then rounding); above 0.1 m it controls nothing a cloth shows
@@ -43,7 +48,7 @@ std::unique_ptr<Integrator> read_cloth_integrator(const ObjectReader& body) {
   if (name == "xpbd") return std::make_unique<XpbdIntegrator>(static_cast<int>(substeps));
   if (name == "adaptive_rk") return std::make_unique<AdaptiveRungeKutta>(tolerance);
   if (name == "projective_dynamics") {
-    return std::make_unique<ProjectiveDynamics>(static_cast<int>(iterations));
+    return std::make_unique<ProjectiveDynamics>(static_cast<int>(iterations), chebyshev_rho);
   }
   auto integrator = make_integrator(name);
   if (!integrator) {

@@ -4,8 +4,10 @@
 
 namespace felt {
 
-ProjectiveDynamics::ProjectiveDynamics(int iterations) : iterations_(iterations) {
+ProjectiveDynamics::ProjectiveDynamics(int iterations, Real chebyshev_rho)
+    : iterations_(iterations), chebyshev_rho_(chebyshev_rho) {
   FELT_CHECK(iterations >= 1 && iterations <= kMaxIterations);
+  FELT_CHECK(chebyshev_rho >= 0 && chebyshev_rho <= kMaxChebyshevRho);
 }
 
 void ProjectiveDynamics::step(const DynamicSystem& system, ParticleState& state, Real t, Real h) {
@@ -19,17 +21,44 @@ void ProjectiveDynamics::step(const DynamicSystem& system, ParticleState& state,
   others_.resize(n);
   system.compute_forces_besides_constraints(state.x, state.v, t, others_);
   iterate_ = state.x;
+  previous_ = state.x;
+  Real omega = 1;
   for (int k = 0; k < iterations_; ++k) {
     project(state, iterate_);
     linear_step_.assemble(inv_mass, state, h, pairs_, force_);
     linear_step_.solve(inv_mass, h, dv_);
+    omega = chebyshev_weight(k, omega);
     for (std::size_t p = 0; p < n; ++p) {
       if (inv_mass[p] == 0) continue;
-      iterate_[p] =
+      const Vec3 solved =
           state.x[p] + h * (state.v[p] + dv_.row(static_cast<Eigen::Index>(p)).transpose());
+      // Wang 2015, eq. 13: x⁺ = ω (γ (x̂ − x) + x − x⁻) + x⁻; ω = 1, γ = 1 is plain iteration
+      const Vec3 next = omega == 1 ? solved
+                                   : Vec3(omega * (kUnderRelaxation * (solved - iterate_[p]) +
+                                                   iterate_[p] - previous_[p]) +
+                                          previous_[p]);
+      previous_[p] = iterate_[p];
+      iterate_[p] = next;
     }
   }
-  apply_velocity_change(inv_mass, h, dv_, state);
+  if (chebyshev_rho_ == 0) {
+    apply_velocity_change(inv_mass, h, dv_, state);
+    return;
+  }
+  for (std::size_t p = 0; p < n; ++p) {
+    if (inv_mass[p] == 0) continue;
+    state.v[p] = (iterate_[p] - state.x[p]) / h;
+    state.x[p] = iterate_[p];
+  }
+}
+
+Real ProjectiveDynamics::chebyshev_weight(int k, Real omega) const {
+  // Wang 2015, eq. 12, after kChebyshevDelay plain iterations (its S: the first ones change
+  // the projections too much for the linear estimate ρ to hold)
+  const Real rho2 = chebyshev_rho_ * chebyshev_rho_;
+  if (chebyshev_rho_ == 0 || k < kChebyshevDelay) return 1;
+  if (k == kChebyshevDelay) return 2 / (2 - rho2);
+  return 4 / (4 - rho2 * omega);
 }
 
 void ProjectiveDynamics::project(const ParticleState& start, const std::vector<Vec3>& iterate) {

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "core/cloth/cloth_grid.hpp"
+#include "core/integrate/projective_dynamics.hpp"
 #include "core/integrate/xpbd_integrator.hpp"
 #include "core/math/check.hpp"
 #include "core/world/world.hpp"
@@ -24,8 +25,11 @@ Outcome run_felt(std::uint32_t n, const FeltConfig& config) {
   params.spring(SpringKind::kShear) = {true, k / 4, 0.02};
   params.spring(SpringKind::kBend) = {true, k / 40, 0.005};
   params.drag = kDampingRate * kMass / (static_cast<Real>(n) * n);
-  auto integrator = config.integrator == "xpbd" ? std::make_unique<XpbdIntegrator>(config.substeps)
-                                                : make_integrator(config.integrator);
+  std::unique_ptr<Integrator> integrator =
+      config.integrator == "xpbd" ? std::make_unique<XpbdIntegrator>(config.substeps)
+      : config.iterations > 0
+          ? std::make_unique<ProjectiveDynamics>(config.iterations, config.chebyshev_rho)
+          : make_integrator(config.integrator);
   FELT_CHECK(integrator != nullptr);
   World world(WorldSettings{Vec3(0, -kGravity, 0), config.step});
   world.add_body(ClothBody("cloth", std::make_shared<const ClothModel>(std::move(model)), params,

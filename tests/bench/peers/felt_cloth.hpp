@@ -13,6 +13,8 @@ struct FeltConfig {
   Real stiffness;          ///< k of the structural springs, N/m
   Real step;               ///< the world's step h, s
   int substeps = 1;        ///< xpbd's substeps per step
+  int iterations = 0;      ///< projective_dynamics' iterations per step (0: its default)
+  Real chebyshev_rho = 0;  ///< and its acceleration
 };
 
 Outcome run_felt(std::uint32_t n, const FeltConfig& config);

@@ -30,6 +30,13 @@ struct XpbdSteps {
   int substeps;
 };
 
+/// projective_dynamics at one frame a step: plain iterations, and accelerated ones
+struct PdIterations {
+  int iterations;
+  Real chebyshev_rho;
+};
+constexpr PdIterations kPdIterations[] = {{5, 0}, {10, 0}, {20, 0}, {10, 0.9}, {20, 0.95}};
+
 void add_felt(std::vector<PeerConfig>& out, std::uint32_t n, const std::vector<Real>& stiffnesses,
               const std::vector<XpbdSteps>& xpbd, bool all_explicit) {
   const Real particle_mass = kMass / (static_cast<Real>(n) * n);
@@ -47,6 +54,12 @@ void add_felt(std::vector<PeerConfig>& out, std::uint32_t n, const std::vector<R
   }
   for (const XpbdSteps& x : xpbd) {
     out.push_back({n, false, {"xpbd", x.stiffness, kFrame, x.substeps}, {}});
+  }
+  for (Real k : stiffnesses) {
+    for (const PdIterations& pd : kPdIterations) {
+      out.push_back(
+          {n, false, {"projective_dynamics", k, kFrame, 1, pd.iterations, pd.chebyshev_rho}, {}});
+    }
   }
 }
 
@@ -79,6 +92,10 @@ std::string PeerConfig::label() const {
   }
   if (felt.integrator == "xpbd") {
     return study::format("xpbd k=%g h=%.3gms×%d", felt.stiffness, felt.step * 1e3, felt.substeps);
+  }
+  if (felt.integrator == "projective_dynamics") {
+    return study::format("projective_dynamics k=%g h=%.3gms it=%d rho=%g", felt.stiffness,
+                         felt.step * 1e3, felt.iterations, felt.chebyshev_rho);
   }
   return study::format("%s k=%g h=%.3gms", felt.integrator.c_str(), felt.stiffness,
                        felt.step * 1e3);

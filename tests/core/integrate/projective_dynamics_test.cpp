@@ -132,6 +132,28 @@ TEST(ProjectiveDynamics, ItsIterationsConvergeToBackwardEuler) {
   }
 }
 
+TEST(ProjectiveDynamics, ChebyshevAccelerationReachesBackwardEulerInFewerIterations) {
+  // the case above converges at about 0.91 an iteration; told ρ = 0.9 (Wang 2015), the
+  // semi-iterative method gets nearer in 32 iterations than the plain one in 64
+  const Real h = 0.01;
+  ClothBody start = disturbed_cloth("projective_dynamics", 1000, 200, 30, 0, 0, 0.005);
+  const std::vector<Vec3> exact = backward_euler_velocity(start, h);
+  const auto error_after = [&](int iterations, Real rho) {
+    ClothBody body = disturbed_cloth("projective_dynamics", 1000, 200, 30, 0, 0, 0.005);
+    ProjectiveDynamics pd(iterations, rho);
+    pd.step(body, body.state(), 0, h);
+    Real error = 0;
+    for (std::size_t p = 0; p < exact.size(); ++p) {
+      error = std::max(error, (body.state().v[p] - exact[p]).norm());
+    }
+    return error;
+  };
+  // measured: 16 iterations 5.7e-4 against 9.2e-3, 32: 1.2e-5 against 1.8e-3, 64: 7.7e-9
+  // against 8.6e-5 m/s
+  EXPECT_LT(error_after(32, 0.9), error_after(64, 0));
+  EXPECT_LT(error_after(32, 0.9), error_after(32, 0) / 50);
+}
+
 TEST(ProjectiveDynamics, KeepsAStiffHangingClothStableAtAFrameStep) {
   // 10 000 N/m springs on a 6 × 6 cloth hanging from its top row, stepped at 1/60 s: more than
   // ten times symplectic Euler's stable step, which explodes there
