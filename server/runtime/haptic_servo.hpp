@@ -1,7 +1,7 @@
 #pragma once
-// The haptic servo thread of a scene (DESIGN: threads): ticks the scene's scripted devices at
-// the servo rate (250–4000 Hz) against the wall clock, each tick rendering against the
-// surfaces interpolated between the two latest physics snapshots.
+// The haptic servo thread of a scene (docs/architecture.md, "Threads and data flow"): ticks the
+// scene's scripted devices at the servo rate (250–4000 Hz) against the wall clock, each tick
+// rendering against the surfaces interpolated between the two latest physics snapshots.
 
 #include <atomic>
 #include <functional>

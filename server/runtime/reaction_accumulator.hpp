@@ -1,7 +1,7 @@
 #pragma once
 // Forces that haptic proxies exert back on the bodies they touch. Proxies report at their own
 // rate from any thread; the physics thread applies, once per step, each proxy's mean force
-// over the updates since the previous step (DESIGN: reaction averaged over each physics step),
+// over the updates since the previous step (docs/architecture.md, "Reactions: averaged per step"),
 // free updates counting as zero, scaled as its latest contact spring says against the surface
 // as the step finds it (ContactSpring). A proxy slower than the physics keeps pushing with its
 // last mean until its next update (a zero-order hold of the spring, not of the force), so a

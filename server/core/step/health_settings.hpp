@@ -1,6 +1,6 @@
 #pragma once
-// How a world judges the state a step leaves (DESIGN "numerical health"), shared by the cloth and
-// the solid systems; a scene sets them with its "health" keys (docs/scenes.md).
+// How a world judges the state a step leaves (docs/scenes.md, "Numerical health"), shared by the
+// cloth and the solid systems; a scene sets them with its "health" keys (docs/scenes.md).
 
 #include <limits>
 

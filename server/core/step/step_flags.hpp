@@ -1,6 +1,6 @@
 #pragma once
-// What happened in one step (DESIGN "numerical health"): a set of StepFlag, typed so that it
-// cannot be mixed up with a count or an id.
+// What happened in one step (docs/scenes.md, "Numerical health"): a set of StepFlag, typed so that
+// it cannot be mixed up with a count or an id.
 
 #include <cstdint>
 #include <initializer_list>

@@ -1,7 +1,7 @@
 #pragma once
 // A step that left an unhealthy state is undone and tried again with twice the substeps, then
 // four times, ...: the rollback-and-substep rule the cloth and the solid systems share
-// (DESIGN "numerical health").
+// (docs/scenes.md, "Numerical health").
 
 #include <algorithm>
 #include <cstdint>
