@@ -167,18 +167,19 @@ std::string tables(const std::vector<Measured>& all, std::uint32_t n, int rounds
 void write_csv(const std::filesystem::path& path, const std::vector<Measured>& all) {
   std::ofstream csv(path);
   csv << "n,engine,configuration,integrator,stiffness_N_per_m,step_s,substeps,iterations,runs,"
-         "wall_per_sim_s,max_strain,sag_error,share_of_static_sag,status,pareto\n";
+         "wall_per_sim_s,max_strain,sag_error,share_of_static_sag,status,pareto,chebyshev_rho\n";
   for (const Measured& m : all) {
     const PeerConfig& c = m.config;
     csv << c.n << ',' << c.engine() << ',' << c.label() << ','
         << (c.bullet ? "bullet" : c.felt.integrator) << ','
         << (c.bullet ? "" : study::csv_number(c.felt.stiffness)) << ','
         << study::csv_number(c.bullet ? c.bullet_config.step : c.felt.step) << ','
-        << (c.bullet ? 1 : c.felt.substeps) << ',' << (c.bullet ? c.bullet_config.iterations : 0)
-        << ',' << m.run_count << ',' << study::csv_number(m.median.wall_per_sim_s) << ','
+        << (c.bullet ? 1 : c.felt.substeps) << ','
+        << (c.bullet ? c.bullet_config.iterations : c.felt.iterations) << ',' << m.run_count << ','
+        << study::csv_number(m.median.wall_per_sim_s) << ','
         << study::csv_number(m.median.max_strain) << ',' << study::csv_number(m.median.sag_error)
         << ',' << study::csv_number(m.sag_reached) << ',' << status(m) << ',' << (m.pareto ? 1 : 0)
-        << '\n';
+        << ',' << (c.bullet ? "" : study::csv_number(c.felt.chebyshev_rho)) << '\n';
   }
 }
 
@@ -201,7 +202,12 @@ std::vector<Measured> read_csv(const std::filesystem::path& path) {
     if (c.bullet) {
       c.bullet_config = {std::stod(cell[5]), std::stoi(cell[7])};
     } else {
-      c.felt = {cell[3], std::stod(cell[4]), std::stod(cell[5]), std::stoi(cell[6])};
+      c.felt = {cell[3],
+                std::stod(cell[4]),
+                std::stod(cell[5]),
+                std::stoi(cell[6]),
+                std::stoi(cell[7]),
+                cell.size() > 15 && !cell[15].empty() ? std::stod(cell[15]) : 0};
     }
     m.run_count = std::stoul(cell[8]);
     m.median.wall_per_sim_s = std::stod(cell[9]);

@@ -110,7 +110,7 @@ std::vector<PeerConfig> peer_configs(std::uint32_t n) {
     // each run costs about 15 times the 40 × 40 one: one configuration of every kind but the
     // explicit integrators that never lead at 40 × 40 (midpoint, rk4, the Verlets, explicit
     // Euler, adaptive_rk), one symplectic Euler, one xpbd
-    add_felt(felt, n, {600, 2400}, {{600, 64}}, false);
+    add_felt(felt, n, {600, 2400, 6000}, {{600, 64}}, false);
     add_bullet(bullet, n, {1, 4, 16, 64}, {4, 16});
   } else {
     add_felt(felt, n, {250, 1000, 4000},
