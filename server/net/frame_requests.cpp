@@ -37,8 +37,7 @@ void handle_subscribe(Session& session, std::uint64_t id, const v1::SubscribeFra
                "max_unacknowledged " + std::to_string(subscribe.max_unacknowledged()) +
                    " is above the limit of " + std::to_string(FrameStream::kMaxWindow));
   }
-  std::vector<BodyId> wanted =
-      sorted_unique<decltype(subscribe.body_ids()), BodyId>(subscribe.body_ids());
+  std::vector<BodyId> wanted = sorted_unique<BodyId>(subscribe.body_ids());
   const auto bodies = session.scene()->bodies();
   for (BodyId body : wanted) {
     if (!bodies->find(body)) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <functional>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 #include "felt/v1/envelope.pb.h"
@@ -71,9 +72,10 @@ void reply(Session& session, std::uint64_t id, Fill&& fill) {
 Offload on_loader(ServerContext& context, std::shared_ptr<SceneRunner> scene);
 
 /// The ids a request lists, sorted, each once, as `Id`s (the wire's integers by default).
-template <class Repeated, class Id = typename Repeated::value_type>
-std::vector<Id> sorted_unique(const Repeated& ids) {
-  std::vector<Id> out(ids.begin(), ids.end());
+template <class Id = void, class Repeated>
+auto sorted_unique(const Repeated& ids) {
+  using Out = std::conditional_t<std::is_void_v<Id>, typename Repeated::value_type, Id>;
+  std::vector<Out> out(ids.begin(), ids.end());
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;

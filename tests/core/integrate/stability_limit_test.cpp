@@ -94,8 +94,8 @@ TEST(StabilityLimit, AdaptiveRkForcedToOneInternalStepDecaysJustInsideItsLimitAn
 }
 
 TEST(StabilityLimit, ImplicitAndAdaptiveIntegratorsHaveNone) {
-  for (std::string_view name :
-       {"adaptive_rk", "implicit_euler", "imex", "desbrun", "kang", "xpbd"}) {
+  for (std::string_view name : {"adaptive_rk", "implicit_euler", "imex", "desbrun", "kang", "xpbd",
+                                "projective_dynamics"}) {
     EXPECT_EQ(make_integrator(name)->step_limit({1e8, 0}), kNoStepLimit) << name;
   }
 }
