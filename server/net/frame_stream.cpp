@@ -255,9 +255,9 @@ void FrameStream::encode(const Plan& plan, SharedFrameBodies& shared, std::strin
 void FrameStream::put_proxies(const std::vector<ProxyView>& proxies, felt::v1::Frame& frame) {
   for (const ProxyView& proxy : proxies) {
     felt::v1::ProxyPresence& out = *frame.add_proxies();
-    out.set_client_id(proxy.client.value());
+    out.set_client_id(proxy.state.key.client.value());
     out.set_client_name(proxy.client_name);
-    out.set_proxy_id(proxy.proxy_id.value());
+    out.set_proxy_id(proxy.state.key.proxy.value());
     out.set_own(proxy.own);
     const ProxyPresenceEntry& state = proxy.state;
     put_vec3(state.position, *out.mutable_position());

@@ -35,11 +35,9 @@ struct FrameOptions {
 
 /// A proxy as a frame shows it to one subscriber.
 struct ProxyView {
-  ClientId client = 0;
   std::string client_name;
-  ProxyId proxy_id = 0;
-  bool own = false;  ///< the subscriber's
-  ProxyPresenceEntry state;
+  bool own = false;          ///< the subscriber's
+  ProxyPresenceEntry state;  ///< its key names its client and its number there
 };
 
 class FrameStream {

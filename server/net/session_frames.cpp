@@ -124,9 +124,8 @@ void SessionFrames::tick() {
 std::vector<ProxyView> SessionFrames::proxies() const {
   std::vector<ProxyView> out;
   for (const ProxyPresenceEntry& entry : scene_->presence(kPresenceWindow)) {
-    const ClientId client = entry.key.client;
     out.push_back(
-        {client, scene_->members().name_of(client), entry.key.proxy, client == client_, entry});
+        {scene_->members().name_of(entry.key.client), entry.key.client == client_, entry});
   }
   return out;
 }

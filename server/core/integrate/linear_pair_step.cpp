@@ -15,10 +15,13 @@ void LinearPairStep::assemble(const DynamicSystem& system, const ParticleState& 
   assemble_rhs(system.inv_mass(), state, h);
 }
 
+void LinearPairStep::set_pairs(std::span<const LinearPair> pairs) {
+  pairs_.assign(pairs.begin(), pairs.end());
+}
+
 void LinearPairStep::assemble(std::span<const Real> inv_mass, const ParticleState& state, Real h,
-                              std::span<const LinearPair> pairs, std::span<const Vec3> force) {
+                              std::span<const Vec3> force) {
   FELT_CHECK(force.size() == state.size());
-  if (!std::ranges::equal(pairs, pairs_)) pairs_.assign(pairs.begin(), pairs.end());
   force_.assign(force.begin(), force.end());
   assemble_rhs(inv_mass, state, h);
 }

@@ -29,10 +29,13 @@ class LinearPairStep {
 
   /// Evaluates the system's pairs, its forces and b at `state` (time t, step h).
   void assemble(const DynamicSystem& system, const ParticleState& state, Real t, Real h);
-  /// The same with the pairs and the force f the caller gives (projective dynamics, whose f
-  /// changes from one iteration of a step to the next while the pairs stay).
+  /// For a caller that gives the pairs and the force itself (projective dynamics, whose f
+  /// changes from one iteration of a step to the next while the pairs stay): the pairs, once a
+  /// step ...
+  void set_pairs(std::span<const LinearPair> pairs);
+  /// ... and b from the force f at each iteration.
   void assemble(std::span<const Real> inv_mass, const ParticleState& state, Real h,
-                std::span<const LinearPair> pairs, std::span<const Vec3> force);
+                std::span<const Vec3> force);
 
   /// Writes the exact Δv of the assembled equation into `dv`, factorizing the matrix first
   /// when it was last factorized for other masses, pairs or h.

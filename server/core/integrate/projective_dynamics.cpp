@@ -20,12 +20,13 @@ void ProjectiveDynamics::step(const DynamicSystem& system, ParticleState& state,
   }
   others_.resize(n);
   system.compute_forces_besides_constraints(state.x, state.v, t, others_);
+  linear_step_.set_pairs(pairs_);
   iterate_ = state.x;
   previous_ = state.x;
   Real omega = 1;
   for (int k = 0; k < iterations_; ++k) {
     project(state, iterate_);
-    linear_step_.assemble(inv_mass, state, h, pairs_, force_);
+    linear_step_.assemble(inv_mass, state, h, force_);
     linear_step_.solve(inv_mass, h, dv_);
     omega = chebyshev_weight(k, omega);
     for (std::size_t p = 0; p < n; ++p) {
