@@ -86,7 +86,11 @@ std::pair<int, bool> project_springs(const ClothModel& model, std::span<const Re
   return {sweep, !out_of_bounds};
 }
 
-/// Removes the velocity of particles moving away from the pin of a taut attachment.
+/// Removes the velocity along a taut attachment, towards its pin as well as away: a taut
+/// attachment is held at its bound for the step, like a spring in the global filter. One-sided,
+/// xpbd's single projection pass left particles by the pins with a velocity towards them that
+/// the position correction took back every step without touching it, and the cloth never came
+/// to rest (docs/results/cloth.md, section 4). Removing a component only takes energy away.
 void filter_attachment_velocities(std::span<const Attachment> attachments, Real max_factor,
                                   Real slack, ParticleState& state) {
   for (const Attachment& a : attachments) {
@@ -95,7 +99,7 @@ void filter_attachment_velocities(std::span<const Attachment> attachments, Real 
     if (length < (max_factor - slack) * a.path_length || length == 0) continue;
     const Vec3 dir = d / length;
     const Real away = (state.v[a.particle] - state.v[a.pin]).dot(dir);
-    if (away > 0) state.v[a.particle] -= away * dir;
+    if (away != 0) state.v[a.particle] -= away * dir;
   }
 }
 
