@@ -174,7 +174,9 @@ bool ClothSystem::attempt(std::size_t index, Real t, Real h, int substeps,
                              body.state());
     });
     timed(profile, StepStage::kColliders, [&] {
-      resolve_collisions(colliders, body.inv_mass(), body.params().thickness, body.state());
+      limiters_[index].set_pushed_by_colliders(resolve_collisions(colliders, body.inv_mass(),
+                                                                  body.params().thickness,
+                                                                  body.state()) > 0);
     });
     if (body.params().self_collision) {
       timed(profile, StepStage::kSelfCollision, [&] {

@@ -1,13 +1,16 @@
 #pragma once
 // The served benchmark scene's cloth (2 m, 4 kg, structural / shear / bend 30 / 8 / 1 N/m) hung
-// by its pins, and its sag: shared by the stretch-limiter tests and the stretch-limit study.
+// by its pins, its sag, and balls to press into it: shared by the stretch-limiter tests and the
+// stretch-limit study.
 
 #include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/cloth/cloth_grid.hpp"
+#include "core/collision/collider.hpp"
 #include "core/world/world.hpp"
 
 namespace felt::test {
@@ -44,6 +47,21 @@ inline Real sag_of(const ClothBody& body) {
     lowest = std::min(lowest, body.state().x[p].y());
   }
   return top - lowest;
+}
+
+/// `count` balls of `radius` in a row along x from `first`, `spacing` apart: the haptic proxies
+/// of several clients pressed into a cloth.
+inline std::vector<Collider> balls_in_a_row(int count, const Vec3& first, Real spacing,
+                                            Real radius) {
+  std::vector<Collider> balls;
+  for (int c = 0; c < count; ++c) {
+    Collider ball;
+    ball.shape = Collider::Shape::kSphere;
+    ball.center = first + Vec3(spacing * c, 0, 0);
+    ball.radius = radius;
+    balls.push_back(ball);
+  }
+  return balls;
 }
 
 }  // namespace felt::test
