@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -43,6 +44,33 @@ TEST(WorldHealth, MidpointsSlowGrowthOnAStiffOscillatorIsCaughtAndRescued) {
   // the unchecked growth reaches 3·10⁵ times after 4.8 s
   EXPECT_LT(highest, 20 * start);
   EXPECT_GE(world.substeps(id).rescued_steps(), 3u);
+}
+
+TEST(WorldHealth, SteadyExponentialGrowthIsCaught) {
+  // RK4 on an undamped anchor spring 1.6 % above its limit (ωh = 2.87 > 2√2): the energy grows
+  // by |R(iωh)|² = 1 − (ωh)⁶/72 + (ωh)⁸/576 = 1.26 a step, 10⁵ times a window of 0.25 s. Judged
+  // against a scale that grew with it, no window was ever flagged: 10²¹ J after 1 s
+  constexpr Real kMass = 0.1, kStiffness = 4e4;  // ω = 632 /s
+  GridClothSpec spec;
+  spec.nx = spec.ny = 2;
+  spec.total_mass = 4 * kMass;
+  ClothParams params;
+  for (SpringParams& sp : params.springs) sp.enabled = false;
+  ClothBody body("particle", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
+                 make_integrator("rk4"));
+  for (std::uint32_t p : {1u, 2u, 3u}) body.pin(p);
+  body.set_anchor({0, body.state().x[0] + Vec3(0.01, 0, 0), kStiffness, 0});
+  World world(WorldSettings{.gravity = Vec3::Zero(),
+                            .time_step = 2.87 / std::sqrt(kStiffness / kMass),
+                            .health = {.auto_substeps = false}});
+  world.add_body(std::move(body));
+  const Real start = world.cloths()[0].elastic_energy();  // 2 J
+  StepFlags flags;
+  while (world.time() < 1) flags |= world.step().flags;
+  const ClothBody& cloth = std::as_const(world).cloths()[0];
+  EXPECT_TRUE(flags.has(StepFlag::kRescued));
+  // caught after the first window, which has no earlier scale to be judged against
+  EXPECT_LT(cloth.kinetic_energy() + cloth.elastic_energy(), 1e3 * start);
 }
 
 TEST(WorldHealth, ADampedOscillatorIsNeverFlagged) {
