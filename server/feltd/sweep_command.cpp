@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <expected>
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -26,6 +28,7 @@ struct SweepRow {
   Real rms_error = 0;  ///< m, the largest body RMS
   Real end_error = 0;  ///< m, the largest at the last sample
   bool pareto = false;
+  bool searched = false;  ///< a step the search chose between two swept ones
 
   /// Ran to the end on its own: no step rescued by substeps, none unrecoverable, errors finite.
   bool stable() const {
@@ -61,14 +64,38 @@ void write_csv(std::ostream& out, const std::vector<SweepRow>& rows) {
   out << "integrator,time_step,max_error,rms_error,end_error,cpu_per_sim_second,wall_per_sim_"
          "second,"
          "energy_drift,"
-         "max_energy_drift,rescued_steps,unrecoverable_steps,stable,pareto\n";
+         "max_energy_drift,rescued_steps,unrecoverable_steps,stable,pareto,searched\n";
   for (const SweepRow& r : rows) {
     out << r.integrator << ',' << r.h << ',' << r.max_error << ',' << r.rms_error << ','
         << r.end_error << ',' << r.stats.cpu_per_sim_second << ',' << r.stats.wall_per_sim_second
         << ',' << r.stats.energy_drift << ',' << r.stats.max_energy_drift << ','
         << r.stats.rescued_steps << ',' << r.stats.unrecoverable_steps << ','
-        << (r.stable() ? 1 : 0) << ',' << (r.pareto ? 1 : 0) << '\n';
+        << (r.stable() ? 1 : 0) << ',' << (r.pareto ? 1 : 0) << ',' << (r.searched ? 1 : 0) << '\n';
   }
+}
+
+/// An integrator's largest stable run, and its smallest unstable run at a longer step.
+struct StableBracket {
+  const SweepRow* stable = nullptr;
+  const SweepRow* unstable = nullptr;
+};
+
+StableBracket stable_bracket(const std::vector<SweepRow>& rows, const std::string& name) {
+  StableBracket b;
+  for (const SweepRow& r : rows) {
+    if (r.integrator == name && r.stable() && (!b.stable || r.h > b.stable->h)) b.stable = &r;
+  }
+  for (const SweepRow& r : rows) {
+    if (r.integrator != name || r.stable() || (b.stable && r.h <= b.stable->h)) continue;
+    if (!b.unstable || r.h < b.unstable->h) b.unstable = &r;
+  }
+  return b;
+}
+
+std::string ms(double h) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", 1e3 * h);
+  return text;
 }
 
 void print_tables(const std::vector<SweepRow>& rows, const SweepOptions& options) {
@@ -78,24 +105,23 @@ void print_tables(const std::vector<SweepRow>& rows, const SweepOptions& options
       "| energy drift (J) | rescued | unrecoverable | Pareto |\n"
       "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n");
   for (const SweepRow& r : rows) {
-    std::printf("| %s | %g | %.3g | %.3g | %.3g | %.3g | %.3g | %+.3g | %llu | %llu | %s |\n",
-                r.integrator.c_str(), 1e3 * r.h, r.max_error, r.rms_error, r.end_error,
-                r.stats.cpu_per_sim_second, r.stats.wall_per_sim_second, r.stats.energy_drift,
-                static_cast<unsigned long long>(r.stats.rescued_steps),
+    std::printf("| %s%s | %.4g | %.3g | %.3g | %.3g | %.3g | %.3g | %+.3g | %llu | %llu | %s |\n",
+                r.integrator.c_str(), r.searched ? " (searched)" : "", 1e3 * r.h, r.max_error,
+                r.rms_error, r.end_error, r.stats.cpu_per_sim_second, r.stats.wall_per_sim_second,
+                r.stats.energy_drift, static_cast<unsigned long long>(r.stats.rescued_steps),
                 static_cast<unsigned long long>(r.stats.unrecoverable_steps),
                 r.pareto ? "yes" : "");
   }
-  std::printf("\n| integrator | largest stable step swept (ms) |\n|---|---:|\n");
+  std::printf(
+      "\n| integrator | largest stable step (ms) | smallest unstable step above it (ms) | runs "
+      "searched |\n|---|---:|---:|---:|\n");
   for (const std::string& name : options.integrators) {
-    double largest = 0;
-    for (const SweepRow& r : rows) {
-      if (r.integrator == name && r.stable()) largest = std::max(largest, r.h);
-    }
-    if (largest > 0) {
-      std::printf("| %s | %g |\n", name.c_str(), 1e3 * largest);
-    } else {
-      std::printf("| %s | none |\n", name.c_str());
-    }
+    const StableBracket b = stable_bracket(rows, name);
+    const auto searched = std::ranges::count_if(
+        rows, [&](const SweepRow& r) { return r.integrator == name && r.searched; });
+    std::printf("| %s | %s | %s | %td |\n", name.c_str(),
+                b.stable ? ms(b.stable->h).c_str() : "none",
+                b.unstable ? ms(b.unstable->h).c_str() : "none", searched);
   }
 }
 
@@ -109,6 +135,7 @@ nlohmann::json rows_to_json(const std::vector<SweepRow>& rows) {
                    {"end_error", r.end_error},
                    {"stable", r.stable()},
                    {"pareto", r.pareto},
+                   {"searched", r.searched},
                    {"run", feltd::to_json(r.stats)}});
   }
   return out;
@@ -147,25 +174,50 @@ int sweep(const SweepOptions& options) {
     std::cerr << "feltd: " << reference.error() << "\n";
     return 2;
   }
+  const auto measure = [&](const std::string& name,
+                           double h) -> std::expected<SweepRow, std::string> {
+    std::fprintf(stderr, "%s at h = %g s ...\n", name.c_str(), h);
+    auto scene = load_scene_variant(*document, run_overrides(*document, name, h), "sweep",
+                                    options.scene, options.scene_dir);
+    auto run = scene ? run_measured(*scene, *reference, *plan) : std::unexpected(scene.error());
+    if (!run) return std::unexpected(name + " at h = " + std::to_string(h) + ": " + run.error());
+    SweepRow row{name, h, run->stats};
+    for (const BodyError& e : run->errors) {
+      // NaN wins: a body that went non-finite makes the run's error NaN
+      if (!(e.max <= row.max_error)) row.max_error = e.max;
+      if (!(e.rms <= row.rms_error)) row.rms_error = e.rms;
+      if (!(e.end <= row.end_error)) row.end_error = e.end;
+    }
+    return row;
+  };
   std::vector<SweepRow> rows;
   for (const std::string& name : options.integrators) {
     for (double h : options.time_steps) {
-      std::fprintf(stderr, "%s at h = %g s ...\n", name.c_str(), h);
-      auto scene = load_scene_variant(*document, run_overrides(*document, name, h), "sweep",
-                                      options.scene, options.scene_dir);
-      auto run = scene ? run_measured(*scene, *reference, *plan) : std::unexpected(scene.error());
-      if (!run) {
-        std::cerr << "feltd: " << name << " at h = " << h << ": " << run.error() << "\n";
+      auto row = measure(name, h);
+      if (!row) {
+        std::cerr << "feltd: " << row.error() << "\n";
         return 2;
       }
-      SweepRow row{name, h, run->stats};
-      for (const BodyError& e : run->errors) {
-        // NaN wins: a body that went non-finite makes the run's error NaN
-        if (!(e.max <= row.max_error)) row.max_error = e.max;
-        if (!(e.rms <= row.rms_error)) row.rms_error = e.rms;
-        if (!(e.end <= row.end_error)) row.end_error = e.end;
+      rows.push_back(std::move(*row));
+    }
+    // bisection between the largest stable step and the next unstable one, over the steps
+    // largest / k (whole k), which the samples' interval stays a multiple of
+    for (int search = 0; search < options.search; ++search) {
+      const StableBracket b = stable_bracket(rows, name);
+      if (!b.stable || !b.unstable) break;
+      const double k_stable = std::round(largest / b.stable->h);
+      const double k_unstable = std::round(largest / b.unstable->h);
+      if (k_stable - k_unstable < 2) break;
+      // the geometric mean of the two steps, as a whole divisor
+      const double k =
+          std::clamp(std::round(std::sqrt(k_stable * k_unstable)), k_unstable + 1, k_stable - 1);
+      auto row = measure(name, largest / k);
+      if (!row) {
+        std::cerr << "feltd: " << row.error() << "\n";
+        return 2;
       }
-      rows.push_back(std::move(row));
+      row->searched = true;
+      rows.push_back(std::move(*row));
     }
   }
   mark_pareto_front(rows);
@@ -235,6 +287,10 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& options) {
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
   cmd->add_option("--out", options.out_dir, "Write sweep.csv and sweep.png (gnuplot) here");
+  cmd->add_option("--search", options.search,
+                  "Runs per integrator spent bisecting between its largest stable step and the "
+                  "next unstable one, over the largest step divided by whole numbers")
+      ->check(CLI::Range(0, 20));
   return cmd;
 }
 

@@ -17,6 +17,9 @@ struct SweepOptions : MeasureOptions {
   std::vector<std::string> integrators;  ///< given to every body that takes one
   std::vector<double> time_steps;        ///< s
   std::string out_dir;                   ///< sweep.csv and sweep.png go here; empty: print only
+  /// Runs per integrator spent bisecting between its largest stable swept step and the next
+  /// unstable one (0: none)
+  int search = 0;
 };
 
 /// Adds `sweep` and its flags to `app`, to be read into `options`; returns the subcommand.

@@ -7,7 +7,8 @@ parsers, not feltd's writers) and against closed forms:
   and two runs give the same state hashes;
 - `feltd compare` of a scene against itself reports zero error;
 - `feltd compare` and `feltd sweep` of RK4 on a particle on an anchor spring report the position
-  error and the energy drift that RK4's amplification factor gives.
+  error and the energy drift that RK4's amplification factor gives;
+- `feltd sweep --search` brackets RK4's stability limit on a stiff anchor spring, ωh = 2√2.
 
 Environment: FELTD (the binary), FELT_SCENE_DIR (scenes/)."""
 
@@ -52,7 +53,7 @@ H = 0.01       # s: omega h = 0.2
 DURATION = 1.0
 
 
-def oscillator_scene(directory):
+def oscillator_scene(directory, stiffness=K, health=None):
     scene = {
         "name": "anchor_oscillator", "time_step": H, "gravity": [0, 0, 0],
         "bodies": [{
@@ -62,10 +63,12 @@ def oscillator_scene(directory):
             "mass": 4 * MASS, "drag": 0, "integrator": "rk4", "pin": [1, 2, 3],
             "springs": {kind: {"enabled": False} for kind in ("structural", "shear", "bend")},
             # particle 0 is at (-0.5, 0.5, 0)
-            "anchors": [{"particle": 0, "target": [-0.5 - X0, 0.5, 0], "stiffness": K,
+            "anchors": [{"particle": 0, "target": [-0.5 - X0, 0.5, 0], "stiffness": stiffness,
                          "damping": 0}],
         }],
     }
+    if health is not None:
+        scene["health"] = health
     path = os.path.join(directory, "oscillator.json")
     with open(path, "w") as f:
         json.dump(scene, f)
@@ -202,6 +205,28 @@ class Sweep(unittest.TestCase):
         self.assertGreater(by[("symplectic_euler", 0.005)]["max_error"],
                            100 * by[("rk4", 0.01)]["max_error"])
         self.assertTrue(min(out["runs"], key=lambda r: r["run"]["wall_seconds"])["pareto"])
+
+    def test_search_brackets_rk4s_stability_limit(self):
+        # RK4 is stable on an undamped spring up to ωh = 2√2 (its region's reach along the
+        # imaginary axis); automatic substeps off, so that a step beyond it grows and is flagged
+        stiffness = 40000.0  # ω = 632 /s: the limit is 4.47 ms
+        limit = 2 * math.sqrt(2) / math.sqrt(stiffness / MASS)
+        with tempfile.TemporaryDirectory() as tmp:
+            scene = oscillator_scene(tmp, stiffness, {"auto_substeps": False})
+            out = json.loads(feltd("sweep", scene, "--integrators", "rk4", "--time-steps",
+                                   "0.1,0.001", "--duration", "1", "--search", "8", "--json"))
+        searched = [r for r in out["runs"] if r["searched"]]
+        self.assertGreaterEqual(len(searched), 3)
+        self.assertLessEqual(len(searched), 8)
+        for run in searched:  # steps the samples every 0.1 s still fall on
+            self.assertAlmostEqual(0.1 / run["time_step"], round(0.1 / run["time_step"]),
+                                   delta=1e-9)
+        stable = max(r["time_step"] for r in out["runs"] if r["stable"])
+        unstable = min(r["time_step"] for r in out["runs"]
+                       if not r["stable"] and r["time_step"] > stable)
+        self.assertLessEqual(stable, limit)
+        self.assertGreater(unstable, limit)
+        self.assertLess(unstable / stable, 1.06)  # from a factor of 100 swept
 
 
 if __name__ == "__main__":
