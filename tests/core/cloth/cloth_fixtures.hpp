@@ -1,8 +1,11 @@
 #pragma once
 // Small bodies and checks shared by the core tests.
 
+#include <cstdint>
 #include <memory>
+#include <random>
 #include <string_view>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -93,6 +96,33 @@ inline void expect_vec_near(const Vec3& got, const Vec3& want, Real tolerance) {
   EXPECT_NEAR(got.x(), want.x(), tolerance);
   EXPECT_NEAR(got.y(), want.y(), tolerance);
   EXPECT_NEAR(got.z(), want.z(), tolerance);
+}
+
+/// A 30 × 30 grid pinned at its two top corners, every free particle moved 1.4 times as far from
+/// the grid's centre and shaken by up to 3 cm (a fixed seed): far beyond any stretch limit, and
+/// slow for Gauss–Seidel (hundreds of sweeps, each taking about 1 % off the excess).
+struct StretchedGrid {
+  ClothModel model;
+  std::vector<Real> inv_mass;
+  std::vector<std::uint32_t> pins;
+  ParticleState state;
+};
+
+inline StretchedGrid badly_stretched_grid() {
+  GridClothSpec spec;
+  spec.nx = spec.ny = 30;
+  StretchedGrid g{
+      make_grid_cloth(spec), {}, grid_pin_indices(spec, GridPinPreset::kTopCorners), {}};
+  g.inv_mass.assign(g.model.particle_count(), 1);
+  for (std::uint32_t p : g.pins) g.inv_mass[p] = 0;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<Real> noise(-0.03, 0.03);
+  g.state = {g.model.rest_positions, std::vector<Vec3>(g.model.particle_count(), Vec3::Zero())};
+  for (std::size_t p = 0; p < g.state.size(); ++p) {
+    if (g.inv_mass[p] > 0)
+      g.state.x[p] = 1.4 * g.state.x[p] + Vec3(noise(rng), noise(rng), noise(rng));
+  }
+  return g;
 }
 
 }  // namespace felt::test

@@ -4,12 +4,11 @@
 // colliders' surfaces and the energy.
 
 #include <algorithm>
-#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "core/cloth/cloth_grid.hpp"
+#include "core/cloth/cloth_fixtures.hpp"
 #include "core/cloth/hanging_cloth.hpp"
 #include "core/cloth/stretch_limiter.hpp"
 #include "core/collision/collider.hpp"
@@ -59,26 +58,14 @@ TEST(PressedCloth, HoldsItsLimitOutsideTheBallsAndComesToRest) {
 TEST(StretchLimiter, PushedByCollidersItStopsStalledSweepsAndLeavesOutTheGlobalSolve) {
   // a cloth pinned at two corners and stretched 40 % at random, where each sweep takes little
   // off the excess: without colliders ten sweeps run and the global solve follows them
-  GridClothSpec spec;
-  spec.nx = spec.ny = 30;
-  const ClothModel model = make_grid_cloth(spec);
-  std::vector<Real> inv_mass(model.particle_count(), 1);
-  for (std::uint32_t p : grid_pin_indices(spec, GridPinPreset::kTopCorners)) inv_mass[p] = 0;
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<Real> noise(-0.03, 0.03);
-  ParticleState stretched{model.rest_positions,
-                          std::vector<Vec3>(model.particle_count(), Vec3::Zero())};
-  for (std::size_t p = 0; p < stretched.size(); ++p) {
-    if (inv_mass[p] > 0)
-      stretched.x[p] = 1.4 * stretched.x[p] + Vec3(noise(rng), noise(rng), noise(rng));
-  }
+  const test::StretchedGrid stretched = test::badly_stretched_grid();
   StretchLimit limit;
   limit.enabled = true;
   const auto pass = [&](bool pushed) {
-    ParticleState state = stretched;
+    ParticleState state = stretched.state;
     StretchLimiter limiter;
     limiter.set_pushed_by_colliders(pushed);
-    return limiter.apply(model, inv_mass, limit, 1e-3, state);
+    return limiter.apply(stretched.model, stretched.inv_mass, limit, 1e-3, state);
   };
   const StretchLimitStats free = pass(false);
   const StretchLimitStats pushed = pass(true);

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/cloth/cloth_body.hpp"
+#include "core/cloth/cloth_fixtures.hpp"
 #include "core/cloth/cloth_grid.hpp"
 #include "core/cloth/hanging_cloth.hpp"
 #include "core/world/world.hpp"
@@ -74,20 +75,8 @@ TEST(StretchLimiter, AFixedEndStaysAndTheFreeEndMovesTheWholeWay) {
 }
 
 TEST(StretchLimiter, SweepsBringEverySpringWithinOnePercentOfTheLimit) {
-  GridClothSpec spec;
-  spec.nx = spec.ny = 30;
-  const ClothModel model = make_grid_cloth(spec);
-  std::vector<Real> inv_mass(model.particle_count(), 1);
-  const auto pins = grid_pin_indices(spec, GridPinPreset::kTopCorners);
-  for (std::uint32_t p : pins) inv_mass[p] = 0;
   // a random, badly stretched state with the pins in place
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<Real> noise(-0.03, 0.03);
-  ParticleState state{model.rest_positions,
-                      std::vector<Vec3>(model.particle_count(), Vec3::Zero())};
-  for (std::size_t p = 0; p < state.size(); ++p) {
-    if (inv_mass[p] > 0) state.x[p] = 1.4 * state.x[p] + Vec3(noise(rng), noise(rng), noise(rng));
-  }
+  auto [model, inv_mass, pins, state] = test::badly_stretched_grid();
   ASSERT_GT(largest_strain(model, state), 1);
   const StretchLimitStats stats =
       StretchLimiter().apply(model, inv_mass, limit(0.1, 1000), 1e-3, state);
