@@ -63,8 +63,8 @@ class AsyncClientTest : public FeltdTest {
 };
 
 TEST_F(AsyncClientTest, AProxyUpdateIsAnsweredWithItsStampAndTheForce) {
-  AsyncClient client;
   Inbox<std::pair<v1::ForceUpdate, std::uint64_t>> forces;
+  AsyncClient client;  // after what its handlers fill: its thread ends before they go
   client.on_force([&](const v1::ForceUpdate& force, std::uint64_t read_us) {
     forces.put({force, read_us});
   });
@@ -81,8 +81,8 @@ TEST_F(AsyncClientTest, AProxyUpdateIsAnsweredWithItsStampAndTheForce) {
 }
 
 TEST_F(AsyncClientTest, HundredsOfUpdatesInFlightFromTwoThreadsAreEachAnsweredOnce) {
-  AsyncClient client;
   Inbox<std::uint64_t> stamps;
+  AsyncClient client;
   client.on_force(
       [&](const v1::ForceUpdate& force, std::uint64_t) { stamps.put(force.client_time_us()); });
   connect(client);
@@ -107,9 +107,10 @@ TEST_F(AsyncClientTest, HundredsOfUpdatesInFlightFromTwoThreadsAreEachAnsweredOn
 }
 
 TEST_F(AsyncClientTest, EachReplyGoesToItsOwnRequestsHandler) {
-  AsyncClient client;
   Inbox<std::uint64_t> forces;
   Inbox<v1::Frame> frames;
+  Inbox<std::pair<std::size_t, v1::ServerMessage>> replies;
+  AsyncClient client;
   client.on_force([&](const v1::ForceUpdate& f, std::uint64_t) { forces.put(f.client_time_us()); });
   client.on_frame([&](const v1::Frame& frame) { frames.put(frame); });
   connect(client);
@@ -125,7 +126,6 @@ TEST_F(AsyncClientTest, EachReplyGoesToItsOwnRequestsHandler) {
       v1::ServerMessage::kSceneStatus, v1::ServerMessage::kSceneStatus,
       v1::ServerMessage::kSceneList, v1::ServerMessage::kProxyOpened,
       v1::ServerMessage::kSubscribed};
-  Inbox<std::pair<std::size_t, v1::ServerMessage>> replies;
   std::vector<std::uint64_t> ids;
   for (std::size_t r = 0; r < requests.size(); ++r) {
     ids.push_back(client.send(requests[r], [&, r](const v1::ServerMessage& reply) {
@@ -145,12 +145,12 @@ TEST_F(AsyncClientTest, EachReplyGoesToItsOwnRequestsHandler) {
 }
 
 TEST_F(AsyncClientTest, ErrorsGoToTheirHandlerOrToOnError) {
-  AsyncClient client;
   Inbox<v1::Error> errors;
+  Inbox<v1::ServerMessage> replies;
+  AsyncClient client;
   client.on_error([&](const v1::Error& error) { errors.put(error); });
   connect(client);
   // a refused request with a handler: the handler has the Error
-  Inbox<v1::ServerMessage> replies;
   v1::ClientMessage close;
   close.mutable_close_proxy()->set_proxy_id(99);
   const std::uint64_t id = client.send(close, [&](const v1::ServerMessage& m) { replies.put(m); });
@@ -196,9 +196,9 @@ std::shared_ptr<Inbox<v1::ServerMessage>> send_long_step(AsyncClient& client) {
 }
 
 TEST_F(AsyncClientTest, AServerThatShutsDownTellsTheClientAndEndsWhatWaits) {
-  AsyncClient client;
   Inbox<v1::SceneEvent> events;
   Inbox<v1::Error> errors;
+  AsyncClient client;
   client.on_event([&](const v1::SceneEvent& event) { events.put(event); });
   client.on_error([&](const v1::Error& error) { errors.put(error); });
   connect(client);
@@ -230,8 +230,8 @@ TEST_F(AsyncClientTest, ARequestWaitingWhenTheServerDiesGetsAnError) {
 }
 
 TEST_F(AsyncClientTest, CloseEndsWhatWaitsWithoutCallingItAnError) {
-  AsyncClient client;
   Inbox<v1::Error> errors;
+  AsyncClient client;
   client.on_error([&](const v1::Error& error) { errors.put(error); });
   connect(client);
   const auto step = send_long_step(client);
