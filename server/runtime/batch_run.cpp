@@ -5,27 +5,17 @@
 #include <cmath>
 #include <optional>
 
-#include <time.h>
 #include <utility>
 
 #include "core/geometry/mesh_topology.hpp"
+#include "core/math/all_finite.hpp"
 #include "runtime/haptic_frame.hpp"
 #include "runtime/reaction_accumulator.hpp"
 #include "runtime/scripted_devices.hpp"
+#include "scheduling/thread_cpu_time.hpp"
 
 namespace felt {
 namespace {
-
-/// CPU time this thread has used, s.
-double thread_cpu_seconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
-
-bool all_finite(std::span<const Vec3> values) {
-  return std::ranges::all_of(values, [](const Vec3& v) { return v.allFinite(); });
-}
 
 /// Adds one step's profile to a run's: the sums (divided by the steps at the end) and maxima.
 void record_stages(const StepProfile& step, int substeps, StageRunStats& run) {

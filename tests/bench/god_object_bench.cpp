@@ -15,7 +15,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <memory>
 #include <string>
 #include <utility>
@@ -24,6 +23,7 @@
 #include "core/collision/triangle_query.hpp"
 #include "core/geometry/surface_normals.hpp"
 #include "core/haptics/god_object.hpp"
+#include "scheduling/thread_cpu_time.hpp"
 
 namespace felt {
 namespace {
@@ -107,9 +107,7 @@ Vec3 device_at(Real t, Real radius) {
 
 /// The calling thread's CPU time, µs.
 double cpu_micros() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return 1e6 * static_cast<double>(t.tv_sec) + 1e-3 * static_cast<double>(t.tv_nsec);
+  return 1e6 * thread_cpu_seconds();
 }
 
 struct Result {

@@ -28,8 +28,6 @@
 // Over 500 lines: one study read top to bottom (the two problems, the calibration, the runs,
 // the tables); its parts are used nowhere else.
 
-#include <time.h>  // clock_gettime: CPU time is less disturbed than wall time on a shared machine
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -47,6 +45,7 @@
 #include "core/solids/solid_collider_contact.hpp"
 #include "core/solids/solid_system.hpp"
 #include "core/solids/tet_lattice.hpp"
+#include "scheduling/thread_cpu_time.hpp"
 #include "study_output.hpp"
 
 namespace felt {
@@ -296,12 +295,6 @@ std::string ms(Real seconds) {
   return format("%g", seconds * 1e3);
 }
 
-double cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 // --- a run through SolidSystem
 // --------------------------------------------------------------------
 
@@ -340,10 +333,10 @@ Run simulate(const Problem& problem, const SolidMaterial& material, Real h,
   };
   record(0);
   for (long n = 1; n <= steps; ++n) {
-    const double cpu = cpu_seconds();
+    const double cpu = thread_cpu_seconds();
     const auto wall = std::chrono::steady_clock::now();
     const SolidStepStats& stats = system.step(h, kGravity, problem.colliders);
-    run.cpu_seconds += cpu_seconds() - cpu;
+    run.cpu_seconds += thread_cpu_seconds() - cpu;
     run.wall_seconds += study::seconds_since(wall);
     run.model_seconds += stats.profile[StepStage::kIntegration];
     run.substeps = std::max(run.substeps, stats.substeps);

@@ -10,7 +10,6 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -29,6 +28,7 @@
 #include "core/collision/triangle_query.hpp"
 #include "core/world/world.hpp"
 #include "falling_cloth.hpp"
+#include "scheduling/thread_cpu_time.hpp"
 
 namespace felt {
 namespace {
@@ -42,9 +42,7 @@ double ms_since(Clock::time_point start) {
 /// The calling thread's CPU time, ms: what other work on the shared machine takes is not
 /// counted (a refit or a query never waits for anything).
 double cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+  return 1e3 * thread_cpu_seconds();
 }
 
 constexpr Real kTimeStep = 1e-3;     // s: the server's default physics step
