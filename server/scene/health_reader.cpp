@@ -4,6 +4,7 @@ namespace felt::scene_json {
 
 void read_health(const ObjectReader& health, WorldSettings& settings) {
   HealthSettings& h = settings.health;
+  h.enabled = health.boolean("enabled", h.enabled);
   if (!health.boolean("energy_check", true)) {
     h.energy_tolerance = std::numeric_limits<Real>::infinity();
   } else {

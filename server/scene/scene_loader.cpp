@@ -355,7 +355,7 @@ Scene read_scene(const json& document, const SceneLoadOptions& options) {
   if (root.has("max_speed")) settings.max_speed = root.ranged("max_speed", 0, 1e-3, 1e6, "m/s");
   if (root.has("health")) {
     read_health(ObjectReader(root.at("health"), root.path_of("health"),
-                             {"energy_check", "energy_tolerance", "energy_window",
+                             {"enabled", "energy_check", "energy_tolerance", "energy_window",
                               "max_energy_growth", "speed_growth", "max_substep_doublings",
                               "relax_after", "auto_substeps", "step_budget"}),
                 settings);

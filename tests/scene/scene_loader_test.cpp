@@ -381,6 +381,11 @@ TEST(SceneLoader, HealthKeysAreReadAndBounded) {
   EXPECT_EQ(s.max_energy_growth, 4);
   EXPECT_EQ(scene->world.cloth_system().settings().health.energy_tolerance, 0.5);
 
+  EXPECT_TRUE(s.health.enabled);
+  doc["health"] = {{"enabled", false}};
+  EXPECT_FALSE(load_scene(doc)->world.settings().health.enabled);
+  doc["health"] = {{"enabled", 0}};
+  EXPECT_EQ(error_of(doc), "health.enabled: must be true or false");
   doc["health"] = {{"energy_check", false}};
   EXPECT_TRUE(std::isinf(load_scene(doc)->world.settings().health.energy_tolerance));
   doc["health"] = {{"energy_tolerance", std::nan("")}};

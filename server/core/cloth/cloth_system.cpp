@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/math/all_finite.hpp"
 #include "core/math/bounds_of.hpp"
 #include "core/math/check.hpp"
 #include "core/step/substeps_for.hpp"
@@ -72,6 +73,14 @@ const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider
   stats_.unrecoverable.clear();
   stats_.over_budget.clear();
   stats_.profile = {};
+  if (!settings_.health.enabled) {
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      stats_.substeps = std::max(stats_.substeps, step_unchecked(b, t, h, colliders, yield_point));
+      bodies_[b].clear_external_forces();
+    }
+    energy_valid_ = false;  // not kept: a check turned on starts from the state as it is then
+    return stats_;
+  }
   if (!energy_valid_) {
     energy_.resize(bodies_.size());
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
@@ -83,66 +92,106 @@ const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider
   window_ = std::max(HealthSettings::kMinWindowSteps,
                      static_cast<int>(std::ceil(settings_.health.energy_window / h)));
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
-    ClothBody& body = bodies_[b];
-    // copy-assignment into equally sized vectors reuses their storage: no allocation
-    backup_.x = body.state().x;
-    backup_.v = body.state().v;
-    applied_before_.resize(body.state().size());
-    body.applied_forces(t, applied_before_);
-    StepStart start{.energy = energy_[b]};
-    Real acceleration = 0;
-    for (std::size_t p = 0; p < backup_.size(); ++p) {
-      start.speed.fastest = std::max(start.speed.fastest, backup_.v[p].norm());
-      acceleration = std::max(acceleration, applied_before_[p].norm() / body.model().mass[p]);
-    }
-    start.speed.acceleration = body.gravity().norm() + acceleration;
-    start.speed.reachable = std::sqrt(2 * start.energy / health_[b].lightest);
-    StickySubsteps& sticky = health_[b].substeps;
-    const std::int64_t budget = settings_.health.step_budget;
-    const std::int64_t fewest = fewest_substeps(b, h);
-    spent_ = 0;
-    capped_ = false;
-    const RescueOutcome outcome = step_with_rescue(
-        static_cast<int>(
-            std::min(budget, std::max<std::int64_t>(fewest, sticky.start(relax_steps)))),
-        settings_.max_doublings,
-        [&](int substeps) { return attempt(b, t, h, substeps, colliders, start, yield_point); },
-        [&] {
-          body.state().x = backup_.x;
-          body.state().v = backup_.v;
-          body.integrator().reset();
-          start.first = false;
-        },
-        [&](int next) { return spent_ + next <= budget; });
-    sticky.record(outcome);
-    BodyStepCounts& counts = health_[b].counts;
-    counts.substeps = outcome.substeps;
-    if (fewest > budget || outcome.out_of_budget || capped_) {
-      ++counts.over_budget_steps;
-      stats_.over_budget.push_back(static_cast<std::uint32_t>(b));
-    }
-    if (outcome.rescued) {
-      stats_.rescued = true;
-      stats_.rescued_bodies.push_back(static_cast<std::uint32_t>(b));
-      // the growth before the rescue cannot be undone: the balance starts over from here
-      health_[b].balance.reset(mechanical_energy(body, h));
-    } else if (outcome.ok) {
-      // healthy() measured the state the step left
-      health_[b].balance.accept(energy_[b] + gravitational_, work_, energy_scale(b, energy_[b]),
-                                window_);
-    } else {
-      body.state().x = backup_.x;
-      for (Vec3& v : body.state().v) v.setZero();
-      body.integrator().reset();
-      energy_[b] = body.elastic_energy_in_steps_of(h);
-      health_[b].balance.reset(mechanical_energy(body, h));
-      stats_.unrecoverable.push_back(static_cast<std::uint32_t>(b));
-    }
-    stats_.substeps = std::max(stats_.substeps, outcome.substeps);
-    body.clear_external_forces();
+    stats_.substeps =
+        std::max(stats_.substeps, step_checked(b, t, h, relax_steps, colliders, yield_point));
+    bodies_[b].clear_external_forces();
   }
   energy_valid_ = true;
   return stats_;
+}
+
+int ClothSystem::step_checked(std::size_t index, Real t, Real h, std::int64_t relax_steps,
+                              std::span<const Collider> colliders,
+                              const std::function<void()>& yield_point) {
+  ClothBody& body = bodies_[index];
+  // copy-assignment into equally sized vectors reuses their storage: no allocation
+  backup_.x = body.state().x;
+  backup_.v = body.state().v;
+  applied_before_.resize(body.state().size());
+  body.applied_forces(t, applied_before_);
+  StepStart start{.energy = energy_[index]};
+  Real acceleration = 0;
+  for (std::size_t p = 0; p < backup_.size(); ++p) {
+    start.speed.fastest = std::max(start.speed.fastest, backup_.v[p].norm());
+    acceleration = std::max(acceleration, applied_before_[p].norm() / body.model().mass[p]);
+  }
+  start.speed.acceleration = body.gravity().norm() + acceleration;
+  start.speed.reachable = std::sqrt(2 * start.energy / health_[index].lightest);
+  StickySubsteps& sticky = health_[index].substeps;
+  const std::int64_t budget = settings_.health.step_budget;
+  const std::int64_t fewest = fewest_substeps(index, h);
+  spent_ = 0;
+  capped_ = false;
+  const RescueOutcome outcome = step_with_rescue(
+      static_cast<int>(std::min(budget, std::max<std::int64_t>(fewest, sticky.start(relax_steps)))),
+      settings_.max_doublings,
+      [&](int substeps) {
+        advance(index, t, h, substeps, colliders, yield_point);
+        return timed(stats_.profile, StepStage::kHealth,
+                     [&] { return healthy(index, t, h, start); });
+      },
+      [&] {
+        body.state().x = backup_.x;
+        body.state().v = backup_.v;
+        body.integrator().reset();
+        start.first = false;
+      },
+      [&](int next) { return spent_ + next <= budget; });
+  sticky.record(outcome);
+  record_counts(index, outcome.substeps, fewest > budget || outcome.out_of_budget);
+  if (outcome.rescued) {
+    stats_.rescued = true;
+    stats_.rescued_bodies.push_back(static_cast<std::uint32_t>(index));
+    // the growth before the rescue cannot be undone: the balance starts over from here
+    health_[index].balance.reset(mechanical_energy(body, h));
+  } else if (outcome.ok) {
+    // healthy() measured the state the step left
+    health_[index].balance.accept(energy_[index] + gravitational_, work_,
+                                  energy_scale(index, energy_[index]), window_);
+  } else {
+    body.state().x = backup_.x;
+    stop(index);
+    energy_[index] = body.elastic_energy_in_steps_of(h);
+    health_[index].balance.reset(mechanical_energy(body, h));
+  }
+  return outcome.substeps;
+}
+
+int ClothSystem::step_unchecked(std::size_t index, Real t, Real h,
+                                std::span<const Collider> colliders,
+                                const std::function<void()>& yield_point) {
+  const std::int64_t budget = settings_.health.step_budget;
+  const std::int64_t fewest = fewest_substeps(index, h);
+  const int substeps = static_cast<int>(std::min(budget, fewest));
+  spent_ = 0;
+  capped_ = false;
+  advance(index, t, h, substeps, colliders, yield_point);
+  record_counts(index, substeps, fewest > budget);
+  ClothBody& body = bodies_[index];
+  const bool finite = timed(stats_.profile, StepStage::kHealth, [&] {
+    return all_finite(body.state().x) && all_finite(body.state().v);
+  });
+  if (!finite) {
+    body.state().x = body.model().rest_positions;
+    stop(index);
+  }
+  return substeps;
+}
+
+void ClothSystem::record_counts(std::size_t index, int substeps, bool over_budget) {
+  BodyStepCounts& counts = health_[index].counts;
+  counts.substeps = substeps;
+  if (over_budget || capped_) {
+    ++counts.over_budget_steps;
+    stats_.over_budget.push_back(static_cast<std::uint32_t>(index));
+  }
+}
+
+void ClothSystem::stop(std::size_t index) {
+  ClothBody& body = bodies_[index];
+  for (Vec3& v : body.state().v) v.setZero();
+  body.integrator().reset();
+  stats_.unrecoverable.push_back(static_cast<std::uint32_t>(index));
 }
 
 std::int64_t ClothSystem::fewest_substeps(std::size_t index, Real h) {
@@ -152,8 +201,8 @@ std::int64_t ClothSystem::fewest_substeps(std::size_t index, Real h) {
   return std::max(asked, substeps_for(h, health_[index].stable_step.of(body)));
 }
 
-bool ClothSystem::attempt(std::size_t index, Real t, Real h, int substeps,
-                          std::span<const Collider> colliders, StepStart& start,
+void ClothSystem::advance(std::size_t index, Real t, Real h, int substeps,
+                          std::span<const Collider> colliders,
                           const std::function<void()>& yield_point) {
   ClothBody& body = bodies_[index];
   const Real dt = h / substeps;
@@ -188,7 +237,6 @@ bool ClothSystem::attempt(std::size_t index, Real t, Real h, int substeps,
           [&] { apply_constraints(body.constraints(), body.state()); });
     if (yield_point) yield_point();
   }
-  return timed(profile, StepStage::kHealth, [&] { return healthy(index, t, h, start); });
 }
 
 bool ClothSystem::healthy(std::size_t index, Real t, Real h, StepStart& start) {

@@ -113,12 +113,24 @@ class ClothSystem {
   /// its stable step's unless automatic substeps are off; beyond any budget when no step is
   /// stable.
   std::int64_t fewest_substeps(std::size_t index, Real h);
+  /// Steps cloth `index` over [t, t + h] with the health check: rolled back and retried with
+  /// substeps while unhealthy, stopped when no retry helps; returns the substeps it took.
+  int step_checked(std::size_t index, Real t, Real h, std::int64_t relax_steps,
+                   std::span<const Collider> colliders, const std::function<void()>& yield_point);
+  /// The same without it (HealthSettings::enabled off): only a non-finite state is caught.
+  int step_unchecked(std::size_t index, Real t, Real h, std::span<const Collider> colliders,
+                     const std::function<void()>& yield_point);
   /// Steps cloth `index` over [t, t + h] in `substeps` equal parts, each integrator call
-  /// within its share of what the step budget has left; false when unhealthy.
-  /// `energy` holds the body's kinetic plus elastic energy at the start, and at the end when
-  /// the step was healthy.
-  bool attempt(std::size_t index, Real t, Real h, int substeps, std::span<const Collider> colliders,
-               StepStart& start, const std::function<void()>& yield_point);
+  /// within its share of what the step budget has left.
+  void advance(std::size_t index, Real t, Real h, int substeps, std::span<const Collider> colliders,
+               const std::function<void()>& yield_point);
+  /// Cloth `index` took `substeps` in its step, which reached its budget if `over_budget` or an
+  /// integrator call stopped at its cap.
+  void record_counts(std::size_t index, int substeps, bool over_budget);
+  /// Brings cloth `index` to rest where it is and reports it unrecoverable.
+  void stop(std::size_t index);
+  /// Whether the state cloth `index` was left in by a step from `start` is healthy; on a
+  /// healthy first attempt, keeps its energy and work for the balance.
   bool healthy(std::size_t index, Real t, Real h, StepStart& start);
   /// Cloth `index`'s kinetic and elastic energy (`kinetic_elastic`, J) plus its weight times
   /// its size: what the energy balance's tolerance is a fraction of.

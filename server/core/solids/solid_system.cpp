@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/math/bounds_of.hpp"
 #include "core/math/check.hpp"
@@ -69,6 +70,12 @@ const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
   // past the budget any count stands for all (a stiff grab can ask for billions)
   const std::int64_t wanted = substeps_for(h, longest);
   const int stable = wanted > budget ? budget + 1 : static_cast<int>(wanted);
+  if (!settings_.health.enabled) {
+    step_unchecked(h, std::min(budget, stable), gravity, colliders, yield_point);
+    stats_.over_budget = stable > budget;
+    if (stats_.over_budget) ++counts_.over_budget_steps;
+    return stats_;
+  }
   const int substeps =
       std::min(budget, std::max(stable, sticky_.start(static_cast<std::int64_t>(
                                             std::ceil(settings_.health.relax_after / h)))));
@@ -100,15 +107,33 @@ const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
   stats_.rescued = outcome.rescued;
   if (!outcome.ok) {
     restore();
-    for (SolidBody& body : bodies_) {
-      body.previous_positions() = body.positions();
-      for (Vec3& v : body.velocities()) v.setZero();
-    }
-    stats_.unrecoverable = true;
+    stop();
   }
   stats_.substeps = outcome.substeps;
   for (SolidBody& body : bodies_) body.clear_external_forces();
   return stats_;
+}
+
+void SolidSystem::step_unchecked(Real h, int substeps, const Vec3& gravity,
+                                 std::span<const Collider> colliders,
+                                 const std::function<void()>& yield_point) {
+  // the finiteness check stays: a non-finite node must not reach the spatial hash
+  if (!attempt(h, substeps, gravity, colliders, std::numeric_limits<Real>::infinity(),
+               yield_point)) {
+    for (SolidBody& body : bodies_) body.positions() = body.rest().nodes;
+    stop();
+  }
+  counts_.substeps = substeps;
+  stats_.substeps = substeps;
+  for (SolidBody& body : bodies_) body.clear_external_forces();
+}
+
+void SolidSystem::stop() {
+  for (SolidBody& body : bodies_) {
+    body.previous_positions() = body.positions();
+    for (Vec3& v : body.velocities()) v.setZero();
+  }
+  stats_.unrecoverable = true;
 }
 
 bool SolidSystem::attempt(Real h, int substeps, const Vec3& gravity,

@@ -90,6 +90,13 @@ class SolidSystem {
   /// Every position finite and, when `check_speed`, every speed under `max_speed`.
   bool healthy(bool check_speed, Real max_speed) const;
   void restore();
+  /// A step of `substeps` substeps without the health check (HealthSettings::enabled off): a
+  /// non-finite state is still caught, and every body starts over from its rest shape.
+  void step_unchecked(Real h, int substeps, const Vec3& gravity,
+                      std::span<const Collider> colliders,
+                      const std::function<void()>& yield_point);
+  /// Brings every body to rest where it is and reports the step unrecoverable.
+  void stop();
 
   SolidStepSettings settings_;
   std::vector<SolidBody> bodies_;

@@ -9,6 +9,11 @@
 namespace felt {
 
 struct HealthSettings {
+  /// Off, a step costs what its integrator and the scene's features cost, nothing more: no
+  /// energy or speed check, no copy of the state to roll back to, no rescue. A body whose state
+  /// turns non-finite still never reaches anyone: it starts over from its rest shape, at rest,
+  /// reported unrecoverable.
+  bool enabled = true;
   /// A body's mechanical energy (kinetic, elastic, gravitational) less the work applied forces
   /// did on it, at its lowest over a window, may lie above its lowest value since the body was
   /// last set (its start, an edit, a rescue) by at most this fraction of the body's energy scale
