@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/geometry/surface_normals.hpp"
 #include "felt/v1/envelope.pb.h"
 #include "net/shared_frame_bodies.hpp"
 #include "net/wire_convert.hpp"
@@ -61,6 +62,15 @@ const std::vector<float>& positions_as_floats(const BodySnapshot& body) {
   return floats;
 }
 
+/// `body`'s vertex normals: the snapshot's when it carries them (haptics render in its scene),
+/// else found here, on the frame encoder's thread, in a buffer per thread.
+const std::vector<Vec3>& normals_of(const BodySnapshot& body) {
+  if (body.normals.size() == body.positions.size()) return body.normals;
+  thread_local std::vector<Vec3> found;
+  compute_vertex_normals(body.positions, body.triangles(), found);
+  return found;
+}
+
 /// `body` as 16-bit values: as deltas against `base` (whose bounds `positions`, the body's
 /// positions as floats, fit) or, without one, as values within new bounds.
 void put_quantized(const BodySnapshot& body, const std::vector<float>& positions, bool with_normals,
@@ -75,7 +85,7 @@ void put_quantized(const BodySnapshot& body, const std::vector<float>& positions
   put_values(record.positions, base ? &base->positions : nullptr, quantized);
   if (with_normals) {
     thread_local std::vector<float> normals_floats;
-    to_floats(body.normals, normals_floats);
+    to_floats(normals_of(body), normals_floats);
     const wire::QuantizationBounds unit{{-1, -1, -1}, {1, 1, 1}};
     wire::quantize(normals_floats, unit, record.normals);
     felt::v1::QuantizedVectors& normals = *out.mutable_quantized_normals();
@@ -100,7 +110,7 @@ void put_body(const BodySnapshot& body, const std::vector<float>* positions,
     record.body_id = body.body_id;
   } else {
     put_floats(body.positions, *out.mutable_positions());
-    if (options.normals) put_floats(body.normals, *out.mutable_normals());
+    if (options.normals) put_floats(normals_of(body), *out.mutable_normals());
   }
   if (options.scalars) {
     thread_local std::vector<float> scalars;

@@ -13,6 +13,9 @@ namespace {
 /// A proxy not updated for this long is not shown to the others.
 constexpr auto kPresenceWindow = std::chrono::seconds(1);
 
+// how soon a tick that found a stale snapshot looks again: a step or two of most scenes
+constexpr auto kStaleRetry = std::chrono::milliseconds(2);
+
 }  // namespace
 
 SessionFrames::SessionFrames(ClientId client, const Transport::Executor& strand,
@@ -28,6 +31,7 @@ SessionFrames::SessionFrames(ClientId client, const Transport::Executor& strand,
 void SessionFrames::subscribe(const FrameOptions& options) {
   stream_.start(options);
   drop_pending();
+  if (scene_) scene_->prepare_frames();
   if (!timer_running_) {
     timer_running_ = true;
     due_ = std::chrono::steady_clock::now();
@@ -49,6 +53,7 @@ void SessionFrames::show(std::shared_ptr<SceneRunner> scene, SceneId id) {
   scene_id_ = id;
   drop_pending();
   stream_.restart();
+  if (scene_ && stream_.active()) scene_->prepare_frames();
 }
 
 void SessionFrames::drop_pending() {
@@ -83,6 +88,13 @@ void SessionFrames::schedule() {
   });
 }
 
+void SessionFrames::retry_soon() {
+  timer_.expires_after(kStaleRetry);
+  timer_.async_wait([this, owner = owner_.lock()](const boost::system::error_code& ec) {
+    if (!ec && timer_running_) tick();
+  });
+}
+
 void SessionFrames::tick() {
   if (!stream_.active() || outbound_.closing()) {
     timer_running_ = false;
@@ -92,6 +104,14 @@ void SessionFrames::tick() {
   const std::uint64_t late = std::exchange(late_ticks_, 0);
   if (scene_) {
     auto snapshot = scene_->latest();
+    if (scene_->stale()) {
+      // a scene nobody watched lately (a subscription slower than LiveScene::kReadersKept, or
+      // just made): its steps are published before its next one
+      late_ticks_ += late;
+      scene_->prepare_frames();
+      retry_soon();
+      return;
+    }
     // with nothing new to show no frame is due, and none was lost while the timer was late
     if (stream_.has_new(*snapshot)) {
       lost_ += late;

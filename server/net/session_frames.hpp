@@ -50,6 +50,9 @@ class SessionFrames {
 
  private:
   void schedule();
+  /// Ticks again in kStaleRetry, off the grid: the scene's latest snapshot lacked steps
+  /// nobody watched, which its physics thread publishes between its next two steps.
+  void retry_soon();
   /// The scene's proxies as this client sees them.
   std::vector<ProxyView> proxies() const;
   void tick();

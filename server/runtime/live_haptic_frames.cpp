@@ -11,11 +11,10 @@ constexpr std::size_t kPoolSize = 3;
 }  // namespace
 
 std::shared_ptr<const HapticFrame> LiveHapticFrames::current() {
+  live_.ask_for_normals();  // force shading and local models read them
   const SteadyClock::time_point now = SteadyClock::now();
-  const SteadyClock::time_point last(
-      SteadyClock::duration(last_use_.exchange(now.time_since_epoch().count())));
   auto frame = latest_.load();
-  if (frame && now - last < kIdle) return frame;
+  if (used_.use(kIdle, now) && frame) return frame;
   // the physics thread may have stopped making frames: start from a still copy of the latest
   std::lock_guard lock(mutex_);
   frame = latest_.load();
@@ -27,8 +26,7 @@ std::shared_ptr<const HapticFrame> LiveHapticFrames::current() {
 }
 
 void LiveHapticFrames::publish(SteadyClock::time_point now) {
-  const SteadyClock::time_point last(SteadyClock::duration(last_use_.load()));
-  if (now - last >= kIdle) return;
+  if (!used_.recent(kIdle, now)) return;
   std::lock_guard lock(mutex_);
   make_pooled(latest_.load().get(), now);
 }

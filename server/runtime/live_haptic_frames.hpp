@@ -4,7 +4,6 @@
 // touches pays nothing), or by the first render after an idle spell. The frames made lately
 // are pooled, and one nobody reads any more is refitted instead of copied.
 
-#include <atomic>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -13,13 +12,14 @@
 #include "runtime/haptic_frame.hpp"
 #include "runtime/live_scene.hpp"
 #include "runtime/published.hpp"
+#include "runtime/recent_use.hpp"
 
 namespace felt {
 
 class LiveHapticFrames {
  public:
   /// Frames are made with structures of kind `structure` from `live`'s latest snapshots.
-  LiveHapticFrames(const LiveScene& live, TriangleQueryKind structure)
+  LiveHapticFrames(LiveScene& live, TriangleQueryKind structure)
       : live_(live), structure_(structure) {}
 
   /// The frame to render against now (made now from the latest snapshot if no proxy was used
@@ -34,14 +34,13 @@ class LiveHapticFrames {
   std::shared_ptr<HapticFrame> make_pooled(const HapticFrame* previous,
                                            SteadyClock::time_point now);
 
-  const LiveScene& live_;
+  LiveScene& live_;  ///< asked for normals while proxies render
   TriangleQueryKind structure_;
   Published<HapticFrame> latest_;
   /// the frames made lately; one nobody else holds any more is refitted, not copied
   std::vector<std::shared_ptr<HapticFrame>> pool_;
   std::mutex mutex_;  ///< held while a frame is made
-  /// steady-clock ticks of the latest current()
-  std::atomic<SteadyClock::rep> last_use_{0};
+  RecentUse used_;    ///< by current()
 };
 
 }  // namespace felt

@@ -26,11 +26,25 @@ SceneEvent LiveScene::event(SceneEvent::Kind kind, ClientId by) const {
 }
 
 void LiveScene::publish() {
-  auto snapshot =
-      make_snapshot(scene.world, latest_.load().get(),
-                    local_models_.load(std::memory_order_relaxed) ? &compliance_ : nullptr);
+  auto snapshot = make_snapshot(
+      scene.world, latest_.load().get(),
+      local_models_.load(std::memory_order_relaxed) ? &compliance_ : nullptr,
+      normals_asked_.recent(kNormalsKept) ? VertexNormals::kComputed : VertexNormals::kLeftOut);
   snapshot->version = ++published_;
   latest_.store(std::move(snapshot));
+  stale_.store(false, std::memory_order_relaxed);
+}
+
+void LiveScene::publish_steps() {
+  if (read_.recent(kReadersKept)) {
+    publish();
+  } else {
+    stale_.store(true, std::memory_order_relaxed);
+  }
+}
+
+void LiveScene::catch_up() {
+  if (stale() && read_.recent(kReadersKept)) publish();
 }
 
 void LiveScene::publish_bodies() {

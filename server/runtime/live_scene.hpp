@@ -6,6 +6,7 @@
 // any thread.
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -15,6 +16,7 @@
 #include "runtime/clock.hpp"
 #include "runtime/pacer.hpp"
 #include "runtime/published.hpp"
+#include "runtime/recent_use.hpp"
 #include "runtime/scene_event.hpp"
 #include "runtime/scene_status.hpp"
 #include "runtime/snapshot.hpp"
@@ -39,14 +41,33 @@ class LiveScene {
   /// An event of `kind` caused by `by`, stamped with the scene's step, time and time scale.
   SceneEvent event(SceneEvent::Kind kind, ClientId by) const;
 
-  /// The latest snapshot (never null) and catalog (never null); any thread.
-  std::shared_ptr<const SceneSnapshot> latest() const { return latest_.load(); }
+  /// The latest snapshot (never null) and catalog (never null); any thread. Reading the
+  /// snapshot keeps snapshots coming after steps for kReadersKept (publish_steps).
+  std::shared_ptr<const SceneSnapshot> latest() const {
+    read_.use(kReadersKept);
+    return latest_.load();
+  }
   std::shared_ptr<const BodyCatalog> bodies() const { return catalog_.load(); }
   /// Snapshots published so far: the latest one's version.
   std::uint64_t published() const { return published_; }
 
-  /// Publishes a snapshot of the world now.
+  /// Publishes a snapshot of the world now: with vertex normals while haptics render against
+  /// the snapshots (ask_for_normals in the last kNormalsKept), without otherwise.
   void publish();
+  /// After steps: publishes a snapshot of them while someone read one lately (latest() in the
+  /// last kReadersKept); else leaves the latest as it was, stale, until catch_up. A scene
+  /// nobody watches makes no snapshot nobody would see (a tenth of a step of the three cubes,
+  /// whose embedded surfaces it places; docs/results/feature_costs.md).
+  void publish_steps();
+  /// Publishes the steps publish_steps left out, if someone read lately.
+  void catch_up();
+  /// The latest snapshot lacks steps since taken (publish_steps). Any thread.
+  bool stale() const { return stale_.load(std::memory_order_relaxed); }
+  static constexpr auto kReadersKept = std::chrono::seconds(1);
+  /// Something renders haptics against the snapshots now and needs their normals. Any thread.
+  void ask_for_normals() { normals_asked_.use(kNormalsKept); }
+  /// How long an ask_for_normals keeps them in the snapshots.
+  static constexpr auto kNormalsKept = std::chrono::seconds(1);
   /// A local-model proxy renders in the scene: its snapshots carry each body's point compliance
   /// from now on (the bodies' stiffness for the local models; two sparse factorizations per body
   /// every kComplianceRefresh on a thread of their own, which a scene no remote device touches
@@ -68,6 +89,9 @@ class LiveScene {
   Published<SceneSnapshot> latest_;
   std::uint64_t published_ = 0;
   std::atomic<bool> local_models_{false};
+  RecentUse normals_asked_;
+  mutable RecentUse read_;  ///< of the latest snapshot
+  std::atomic<bool> stale_{false};
   /// started by the first snapshot that needs it, on the physics thread (whose nice it takes)
   ComplianceWorker compliance_{ComplianceWorker::Mode::kThread};
   Published<BodyCatalog> catalog_;

@@ -120,6 +120,15 @@ void SceneRunner::prepare_haptics() {
   post([this](Scene&) { haptic_frames_.current(); });
 }
 
+void SceneRunner::prepare_frames() {
+  if (catching_up_.exchange(true)) return;  // asked already: one command does it
+  post([this](Scene&) {
+    catching_up_ = false;
+    live_.latest();  // a read: the steps from now on are published too
+    live_.catch_up();
+  });
+}
+
 RunnerStats SceneRunner::stats() const {
   std::lock_guard lock(stats_mutex_);
   RunnerStats stats = stats_;
@@ -169,8 +178,9 @@ void SceneRunner::run(std::stop_token stop) {
         step_requests.answer_reached(live_.status());
         commands_.apply_all(scene);
         if (clock_.now() - last_publish >= kPassLength) {
-          live_.publish();
-          haptic_frames_.publish(SteadyClock::now());
+          const std::uint64_t before = live_.published();
+          live_.publish_steps();
+          if (live_.published() != before) haptic_frames_.publish(SteadyClock::now());
           last_publish = clock_.now();
         }
       }
@@ -195,9 +205,11 @@ void SceneRunner::run(std::stop_token stop) {
     // paused scene as it was, and its subscribers get no frame for them
     if (stepped) {
       yield_core();
-      live_.publish();
+      live_.publish_steps();
+    } else {
+      live_.catch_up();  // someone came to read a scene whose steps nobody watched
     }
-    if (stepped || live_.published() != published_before) {
+    if (live_.published() != published_before) {
       yield_core();
       haptic_frames_.publish(SteadyClock::now());
     }

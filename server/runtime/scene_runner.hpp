@@ -147,6 +147,8 @@ class SceneRunner {
 
   /// The latest published snapshot (never null).
   std::shared_ptr<const SceneSnapshot> latest() const { return live_.latest(); }
+  /// The latest snapshot lacks steps nobody watched (LiveScene::publish_steps).
+  bool stale() const { return live_.stale(); }
 
   /// A new proxy known to the scene as `key`, with the scene's haptics settings or `settings`:
   /// the handle updates it (render) and closes it when it goes (close_proxy).
@@ -167,6 +169,9 @@ class SceneRunner {
   /// structures on the network thread that answers it (5 ms for 20,000 triangles, in which that
   /// thread's other clients wait).
   void prepare_haptics();
+  /// A client subscribed to the scene's frames: the steps nobody watched are published now,
+  /// between two steps, so that its first frame shows the scene as it is.
+  void prepare_frames();
 
   RunnerStats stats() const;
   /// The scripted devices' latest updates (empty without devices).
@@ -211,6 +216,7 @@ class SceneRunner {
   SceneRequests requests_;
   HealthEvents health_{members_};
   LiveHapticFrames haptic_frames_;
+  std::atomic<bool> catching_up_{false};  ///< a prepare_frames command is queued
 
   ProxyPresence presence_;
 

@@ -71,7 +71,7 @@ void find_compliance(ComplianceWorker& worker, BodyId id, Real time, std::size_t
 }  // namespace
 
 std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnapshot* previous,
-                                             ComplianceWorker* compliance) {
+                                             ComplianceWorker* compliance, VertexNormals normals) {
   auto snapshot = std::make_shared<SceneSnapshot>();
   snapshot->step = world.step_count();
   snapshot->sim_time = world.time();
@@ -109,7 +109,9 @@ std::shared_ptr<SceneSnapshot> make_snapshot(const World& world, const SceneSnap
             [&] { return compliance_problem(body, world.colliders()); }, out);
       }
     }
-    compute_vertex_normals(out.positions, out.triangles(), out.normals);
+    if (normals == VertexNormals::kComputed) {
+      compute_vertex_normals(out.positions, out.triangles(), out.normals);
+    }
   }
   return snapshot;
 }

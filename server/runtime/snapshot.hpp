@@ -21,7 +21,7 @@ struct BodySnapshot {
   /// lattice's surface; shared by every snapshot, never copied
   std::shared_ptr<const std::vector<Triangle>> surface;
   std::vector<Vec3> positions;
-  std::vector<Vec3> normals;  ///< per vertex
+  std::vector<Vec3> normals;  ///< per vertex; empty when left out (VertexNormals)
   /// a cloth's model (springs and rest lengths), shared, for the strain clients may ask for;
   /// null for a solid
   std::shared_ptr<const ClothModel> cloth;
@@ -68,12 +68,18 @@ struct SceneSnapshot {
 /// body this often.
 inline constexpr Real kComplianceRefresh = 0.05;
 
+/// Whether a snapshot carries its bodies' vertex normals: haptic rendering reads them; a frame
+/// that asks for them finds them itself when they are left out (frame_stream.cpp), on the frame
+/// encoder's thread instead of the physics thread (a fifth of a bare step of the 100 × 100 cloth).
+enum class VertexNormals : bool { kLeftOut, kComputed };
+
 /// Copies what clients see of `world` now, sharing the surfaces of `previous` (the last
-/// snapshot of the same world, or null); with a `compliance` worker also each body's point
-/// compliance for local models (shared from `previous` while recent, else the latest the worker
-/// found, asking it for a new one); without, every body's is unknown.
+/// snapshot of the same world, or null), with or without `normals`; with a `compliance` worker
+/// also each body's point compliance for local models (shared from `previous` while recent,
+/// else the latest the worker found, asking it for a new one); without, every body's is unknown.
 std::shared_ptr<SceneSnapshot> make_snapshot(const World& world,
                                              const SceneSnapshot* previous = nullptr,
-                                             ComplianceWorker* compliance = nullptr);
+                                             ComplianceWorker* compliance = nullptr,
+                                             VertexNormals normals = VertexNormals::kComputed);
 
 }  // namespace felt

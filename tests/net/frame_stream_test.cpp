@@ -97,6 +97,25 @@ TEST(FrameStream, Float32FramesCarryExactFloatsAndTrianglesOnce) {
   EXPECT_EQ(second.decoded.bodies[0].triangles->size(), 3u * 29 * 29 * 2);
 }
 
+TEST(FrameStream, NormalsASnapshotLeftOutAreFoundForAFrameThatAsksForThem) {
+  // a served scene leaves them out of its snapshots while no haptics render (live_scene.hpp)
+  World world = swinging_world();
+  for (int s = 0; s < 20; ++s) world.step();  // swung out of its plane
+  const auto with = make_snapshot(world);
+  const auto without = make_snapshot(world, nullptr, nullptr, VertexNormals::kLeftOut);
+  ASSERT_TRUE(without->bodies[0].normals.empty());
+  for (const bool quantized : {false, true}) {
+    const auto frame_of = [&](std::shared_ptr<const SceneSnapshot> snapshot) {
+      FrameStream stream;
+      stream.start({60, true, {}, quantized, false});
+      v1::Frame frame;
+      stream.build(std::move(snapshot), 7, 0, frame);
+      return frame.bodies(0).SerializeAsString();
+    };
+    EXPECT_EQ(frame_of(without), frame_of(with)) << "quantized " << quantized;
+  }
+}
+
 TEST(FrameStream, QuantizedFramesAreWithinHalfAStepAndHalfTheSize) {
   World world = swinging_world();
   FrameStream floats, quantized;

@@ -59,6 +59,20 @@ TEST(SessionFrames, AFrameStillBeingEncodedWhenItsSubscriptionEndsIsNeverSent) {
   EXPECT_FALSE(client->next_frame(300ms));
 }
 
+TEST(SessionFrames, FramesOfAUnwatchedSceneAndOfASlowSubscriptionShowItAsItIsNow) {
+  // a scene nobody read from lately publishes no snapshots after its steps (LiveScene)
+  InProcessServer server(flat_cloth_scene(Vec3(0, -9.81, 0)));
+  auto client = server.greeted("watcher");
+  std::this_thread::sleep_for(300ms);
+  client->subscribe_frames(0.5);  // a frame every 2 s, slower than the readers' second
+  const auto first = client->next_frame(2s);
+  ASSERT_TRUE(first);
+  EXPECT_GT(first->step(), 0u);  // not the snapshot published before its steps
+  const auto second = client->next_frame(5s);
+  ASSERT_TRUE(second);
+  EXPECT_GT(second->step(), first->step());
+}
+
 TEST(SessionFrames, ANewSubscriptionsFirstFrameIsItsOwnKeyFrame) {
   InProcessServer server(flat_cloth_scene());
   auto client = server.greeted("watcher");

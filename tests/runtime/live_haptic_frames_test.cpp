@@ -20,6 +20,17 @@ TEST(LiveHapticFrames, TheFirstUseMakesAStillFrameOfTheLatestSnapshot) {
   EXPECT_EQ(frames.current(), frame);  // nothing new was published
 }
 
+TEST(LiveHapticFrames, RenderingAsksForTheNormalsItShadesWith) {
+  ManualClock clock;
+  LiveScene live(flat_cloth_scene(), 0, clock);
+  LiveHapticFrames frames(live, TriangleQueryKind::kBvhSphere2);
+  EXPECT_TRUE(frames.current()->to->bodies[0].normals.empty());  // made before anyone asked
+  live.publish();
+  frames.publish(SteadyClock::now());
+  const auto frame = frames.current();
+  EXPECT_EQ(frame->to->bodies[0].normals.size(), frame->to->bodies[0].positions.size());
+}
+
 TEST(LiveHapticFrames, PublicationsFollowWhileProxiesAreInUseAndRefitRetiredFrames) {
   ManualClock clock;
   LiveScene live(flat_cloth_scene(Vec3(0, -9.81, 0)), 0, clock);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/cloth/cloth_point_compliance.hpp"
+#include "core/geometry/surface_normals.hpp"
 
 #include "runner_fixtures.hpp"
 
@@ -22,6 +23,18 @@ TEST(LiveScene, PublishesVersionedSnapshotsThatKeepWhatTheyShowed) {
   EXPECT_EQ(second->step, 1u);
   EXPECT_EQ(first->step, 0u);
   EXPECT_NE(second->bodies[0].positions, first->bodies[0].positions);
+}
+
+TEST(LiveScene, SnapshotsCarryNormalsOnlyWhileHapticsAskForThem) {
+  ManualClock clock;
+  LiveScene live(flat_cloth_scene(Vec3(0, -9.81, 0)), 0, clock);
+  EXPECT_TRUE(live.latest()->bodies[0].normals.empty());  // nobody renders haptics
+  live.ask_for_normals();
+  live.publish();
+  const BodySnapshot& body = live.latest()->bodies[0];
+  std::vector<Vec3> normals;
+  compute_vertex_normals(body.positions, body.triangles(), normals);
+  EXPECT_EQ(body.normals, normals);
 }
 
 TEST(LiveScene, PointComplianceIsFoundOnAThreadOfItsOwnAndKeptUntilItIsOld) {

@@ -33,6 +33,25 @@ TEST(SceneRunner, PublishesSnapshotsThatFollowItsClock) {
   EXPECT_EQ(runner.latest()->step, runner.stats().steps);
 }
 
+TEST(SceneRunner, StepsNobodyWatchesAreLeftOutOfTheSnapshotsUntilAFrameIsAskedFor) {
+  ManualClock clock;
+  SceneRunner runner(flat_cloth_scene(Vec3(0, -9.81, 0)), {}, {}, {}, clock);
+  runner.start();
+  ASSERT_TRUE(settled(clock));
+  clock.advance(500us);
+  ASSERT_TRUE(move_clock(clock, 100ms));
+  EXPECT_TRUE(runner.stale());  // a hundred steps, no snapshot of them
+  EXPECT_EQ(runner.latest()->step, 0u);
+  runner.prepare_frames();  // a client subscribes
+  ASSERT_TRUE(wait_for([&] { return !runner.stale(); }));
+  EXPECT_EQ(runner.latest()->step, 100u);
+  // read lately: every pass of steps is published from now on
+  ASSERT_TRUE(move_clock(clock, 10ms));
+  EXPECT_EQ(runner.latest()->step, 110u);
+  EXPECT_FALSE(runner.stale());
+  runner.stop();
+}
+
 TEST(SceneRunner, ReportsTheRealTimeFactorOverHalfASecondOfItsClock) {
   ManualClock clock;
   SceneRunner runner(flat_cloth_scene(), {}, {}, {}, clock);
@@ -75,6 +94,7 @@ TEST(SceneRunner, ASceneThatCannotKeepUpStillPublishesEveryPassOfItsClock) {
 TEST(SceneRunner, ATinyTimeScaleHoldsTheSceneStillAndItsThreadAsleep) {
   ManualClock clock;
   SceneRunner runner(flat_cloth_scene(Vec3(0, -9.81, 0)), {}, {}, {}, clock);
+  runner.latest();  // watched: its steps are published
   runner.start();
   ASSERT_TRUE(settled(clock));
   clock.advance(500us);

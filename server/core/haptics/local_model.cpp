@@ -18,6 +18,8 @@ LocalModel cut_local_model(const HapticSurface& surface, Real interval, const Ve
   std::unordered_map<std::uint32_t, std::uint32_t> vertex_slot;
   std::size_t sent = 0;
   for (const HapticBody& body : surface.bodies) {
+    // the first frame after a quiet spell may come from a snapshot made without normals
+    if (body.normals_to.size() != body.to.size()) continue;
     near.clear();
     body.query->collect(region, near);
     std::sort(near.begin(), near.end());

@@ -119,6 +119,15 @@ TEST(LocalModel, HoldsTheTrianglesNearThePointWithTheirVelocities) {
   EXPECT_EQ(few.bodies[0].triangle_ids.size(), 4u);
 }
 
+TEST(LocalModel, ABodyWithoutNormalsIsLeftOut) {
+  // a served scene's first frame after a quiet spell: its snapshot was made without them
+  MovingSheet sheet(Vec3::Zero());
+  HapticSurface surface = sheet.surface(0, 0.01);
+  ASSERT_EQ(cut_local_model(surface, 0.01, Vec3::Zero(), 0.1, 100).bodies.size(), 1u);
+  surface.bodies[0].normals_to = {};
+  EXPECT_TRUE(cut_local_model(surface, 0.01, Vec3::Zero(), 0.1, 100).bodies.empty());
+}
+
 TEST(LocalModel, AModelWithABadIdOrNumberIsNotWellFormed) {
   MovingSheet sheet(Vec3::Zero());
   const LocalModel good = cut_local_model(sheet.surface(0, 0.01), 0.01, Vec3::Zero(), 0.1, 100);
