@@ -54,8 +54,7 @@ const std::vector<std::string> kBareCloth{"health.enabled=false",
                                           "bodies.0.stretch_limit.enabled=false"};
 const std::vector<std::string> kBareCubes{"health.enabled=false"};
 
-std::vector<std::string> with(std::vector<std::string> base,
-                              const std::vector<std::string>& more) {
+std::vector<std::string> with(std::vector<std::string> base, const std::vector<std::string>& more) {
   base.insert(base.end(), more.begin(), more.end());
   return base;
 }
@@ -151,10 +150,11 @@ int main(int argc, char** argv) {
   }
   std::string tables =
       study::generated_by("served_feature_costs", study::seconds_since(start)) +
-      study::format(" %d rounds, the variants alternating within each round; one-minute load "
-                    "average %.1f–%.1f on 2 cores.\n\n",
-                    rounds, *std::min_element(load.begin(), load.end()),
-                    *std::max_element(load.begin(), load.end())) +
+      study::format(
+          " %d rounds, the variants alternating within each round; one-minute load "
+          "average %.1f–%.1f on 2 cores.\n\n",
+          rounds, *std::min_element(load.begin(), load.end()),
+          *std::max_element(load.begin(), load.end())) +
       "| scene | feature | CPU ms per step, median (min–max) | against bare |\n"
       "|---|---|---:|---:|\n";
   double bare = 0;
@@ -163,8 +163,8 @@ int main(int argc, char** argv) {
     std::sort(sorted.begin(), sorted.end());
     const double median = sorted[sorted.size() / 2];
     if (i == 0 || all[i].scene != all[i - 1].scene) bare = median;
-    tables += study::format("| %s | %s | %.3f (%.3f–%.3f) | %.2f |\n", all[i].scene,
-                            all[i].feature, median, sorted.front(), sorted.back(), median / bare);
+    tables += study::format("| %s | %s | %.3f (%.3f–%.3f) | %.2f |\n", all[i].scene, all[i].feature,
+                            median, sorted.front(), sorted.back(), median / bare);
   }
   study::write_tables(argv[2], "feature_costs.md", "What the optional features cost",
                       "feature_costs_tables.md", "served_feature_costs", tables);

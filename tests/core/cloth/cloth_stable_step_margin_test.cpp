@@ -139,8 +139,7 @@ TEST(ClothStableStepMargin, TheMarginedStepIsStableGrabbedAndPressedByABall) {
        {"symplectic_euler", "verlet", "velocity_verlet", "leapfrog", "rk4"}) {
     for (const Held held : {Held::kGrabbed, Held::kPressed}) {
       // the estimate sees the grab's anchor, not the ball
-      const Real estimate =
-          stable_cloth_step(held_cloth(integrator, 1, held)) / kClothStepMargin;
+      const Real estimate = stable_cloth_step(held_cloth(integrator, 1, held)) / kClothStepMargin;
       if (held == Held::kPressed) {  // the ball is in the way
         ClothSystem system = unchecked_system(integrator, 1, held);
         const Real before = system.bodies()[0].state().x[kCentre].z();
