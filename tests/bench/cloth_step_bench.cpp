@@ -13,6 +13,7 @@
 #include "core/cloth/cloth_grid.hpp"
 #include "core/cloth/cloth_stable_step.hpp"
 #include "core/cloth/hanging_cloth.hpp"
+#include "core/integrate/implicit_euler.hpp"
 #include "core/world/world.hpp"
 
 namespace felt {
@@ -47,11 +48,19 @@ void step(benchmark::State& state, std::string_view integrator) {
   world.add_body(std::move(body));
   int substeps = 1;
   std::int64_t rescued = 0;
+  // implicit Euler's conjugate-gradient iterations (issue 29, item 3)
+  const auto* implicit = dynamic_cast<const ImplicitEuler*>(&world.cloths()[0].integrator());
+  std::int64_t iterations = 0;
   for (auto _ : state) {
     const StepReport report = world.step();
     substeps = std::max(substeps, report.max_substeps);
     rescued += report.flags.has(StepFlag::kRescued) ? 1 : 0;
+    if (implicit) iterations += implicit->last_solve().iterations;
     benchmark::ClobberMemory();
+  }
+  if (implicit) {
+    state.counters["cg_iterations"] =
+        static_cast<double>(iterations) / static_cast<double>(state.iterations());
   }
   const ClothBody& cloth = world.cloths()[0];
   state.counters["particles"] = n * n;

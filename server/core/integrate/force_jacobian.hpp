@@ -55,6 +55,9 @@ class ForceJacobian {
 
   std::size_t particle_count() const { return velocity_diagonal_.size(); }
   const std::vector<Pair>& pairs() const { return pairs_; }
+  /// −∂f_p/∂v_p and −∂f_p/∂x_p of each particle's own terms, as scalars (times I).
+  const std::vector<Real>& velocity_diagonal() const { return velocity_diagonal_; }
+  const std::vector<Real>& position_diagonal() const { return position_diagonal_; }
 
  private:
   std::vector<Pair> pairs_;

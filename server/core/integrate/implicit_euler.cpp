@@ -8,48 +8,46 @@ void ImplicitEuler::step(const DynamicSystem& system, ParticleState& state, Real
   const std::size_t n = state.size();
   force_.resize(n);
   rhs_.resize(n);
-  dv_.resize(n);
   dfdx_.resize(n);
   dfdv_.resize(n);
   inv_diagonal_.resize(n);
   filter_.resize(n);
-  diag_dx_.resize(n);
-  diag_dv_.resize(n);
+  // warm start: the last step's Δv, scaled to this step's length (Δv ≈ h a, and a changes
+  // little from one step to the next); none after a reset or a change of size
+  const bool warm = dv_.size() == n && last_h_ > 0;
+  if (!warm) dv_.assign(n, Vec3::Zero());
+  const Real scale = warm ? h / last_h_ : 0;
 
   const auto inv_mass = system.inv_mass();
   system.compute_forces(state.x, state.v, t, force_);
   // a system without Jacobians is a programming error: every body type the loader builds
   // (cloth today) provides them
   FELT_CHECK(system.compute_jacobian(state.x, state.v, jacobian_));
+  matrix_.assemble(jacobian_, inv_mass, h);
 
   // right-hand side h (f₀ + h K v₀)
   jacobian_.multiply(state.v, dfdx_, dfdv_);
   for (std::size_t p = 0; p < n; ++p) rhs_[p] = h * (force_[p] + h * dfdx_[p]);
 
   // pins are filtered out (S = 0) and their Δv stays 0; the Jacobi preconditioner is the
-  // diagonal of A = M − h D − h² K
-  jacobian_.diagonal_blocks(diag_dx_, diag_dv_);
+  // diagonal of A
+  matrix_.diagonal(inv_diagonal_);
   for (std::size_t p = 0; p < n; ++p) {
-    dv_[p].setZero();
     if (inv_mass[p] == 0) {
+      dv_[p].setZero();
       filter_[p].setZero();
       inv_diagonal_[p].setOnes();
       continue;
     }
+    dv_[p] *= scale;
     filter_[p].setIdentity();
-    const Vec3 diagonal = Vec3::Constant(1 / inv_mass[p]) - h * diag_dv_[p].diagonal() -
-                          h * h * diag_dx_[p].diagonal();
-    inv_diagonal_[p] = diagonal.cwiseInverse();
+    inv_diagonal_[p] = inv_diagonal_[p].cwiseInverse();
   }
 
-  const auto apply = [&](std::span<const Vec3> y, std::span<Vec3> out) {
-    jacobian_.multiply(y, dfdx_, dfdv_);
-    for (std::size_t p = 0; p < n; ++p) {
-      const Real mass = inv_mass[p] == 0 ? 0 : 1 / inv_mass[p];
-      out[p] = mass * y[p] - h * dfdv_[p] - h * h * dfdx_[p];
-    }
-  };
-  last_solve_ = solver_.solve(apply, rhs_, inv_diagonal_, filter_, dv_);
+  last_solve_ = solver_.solve(
+      [this](std::span<const Vec3> y, std::span<Vec3> out) { matrix_.multiply(y, out); }, rhs_,
+      inv_diagonal_, filter_, dv_);
+  last_h_ = h;
 
   for (std::size_t p = 0; p < n; ++p) {
     if (inv_mass[p] == 0) continue;

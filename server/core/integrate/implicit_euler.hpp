@@ -1,10 +1,11 @@
 #pragma once
 // Backward Euler for cloth, linearized once per step (Baraff & Witkin 1998; thesis 1 §4.3):
 //   (M − h ∂f/∂v − h² ∂f/∂x) Δv = h (f₀ + h (∂f/∂x) v₀),   x₁ = x₀ + h (v₀ + Δv)   (4.14)
-// solved by the filtered PCG so pins hold exactly. Unconditionally stable on a linear
-// oscillator, first order, and it damps energy.
+// solved by the filtered PCG so pins hold exactly, started from the last step's Δv. Unconditionally
+// stable on a linear oscillator, first order, and it damps energy.
 
 #include "core/integrate/filtered_conjugate_gradient.hpp"
+#include "core/integrate/implicit_system_matrix.hpp"
 #include "core/integrate/integrator.hpp"
 
 namespace felt {
@@ -13,6 +14,8 @@ class ImplicitEuler final : public Integrator {
  public:
   std::string_view name() const override { return "implicit_euler"; }
   void step(const DynamicSystem& system, ParticleState& state, Real t, Real h) override;
+  /// Forgets the last Δv: the next solve starts from zero.
+  void reset() override { last_h_ = 0; }
 
   /// The linear solve of the last step.
   const FilteredConjugateGradient::Result& last_solve() const { return last_solve_; }
@@ -24,10 +27,12 @@ class ImplicitEuler final : public Integrator {
 
  private:
   ForceJacobian jacobian_;
+  ImplicitSystemMatrix matrix_;
   FilteredConjugateGradient solver_;
   FilteredConjugateGradient::Result last_solve_;
   std::vector<Vec3> force_, rhs_, dv_, dfdx_, dfdv_, inv_diagonal_;
-  std::vector<Mat3> filter_, diag_dx_, diag_dv_;
+  std::vector<Mat3> filter_;
+  Real last_h_ = 0;  ///< of the step dv_ is from; 0: none to start from
 };
 
 }  // namespace felt
