@@ -2,8 +2,8 @@
 
 namespace felt {
 
-void ImplicitSystemMatrix::assemble(const ForceJacobian& jacobian,
-                                    std::span<const Real> inv_mass, Real h) {
+void ImplicitSystemMatrix::assemble(const ForceJacobian& jacobian, std::span<const Real> inv_mass,
+                                    Real h) {
   const std::vector<ForceJacobian::Pair>& pairs = jacobian.pairs();
   i_.resize(pairs.size());
   j_.resize(pairs.size());
