@@ -110,12 +110,15 @@ int ClothSystem::step_checked(std::size_t index, Real t, Real h, std::int64_t re
   applied_before_.resize(body.state().size());
   body.applied_forces(t, applied_before_);
   StepStart start{.energy = energy_[index]};
-  Real acceleration = 0;
+  // squared, so that one square root is taken for all
+  Real fastest_sq = 0, acceleration_sq = 0;
   for (std::size_t p = 0; p < backup_.size(); ++p) {
-    start.speed.fastest = std::max(start.speed.fastest, backup_.v[p].norm());
-    acceleration = std::max(acceleration, applied_before_[p].norm() / body.model().mass[p]);
+    const Real mass = body.model().mass[p];
+    fastest_sq = std::max(fastest_sq, backup_.v[p].squaredNorm());
+    acceleration_sq = std::max(acceleration_sq, applied_before_[p].squaredNorm() / (mass * mass));
   }
-  start.speed.acceleration = body.gravity().norm() + acceleration;
+  start.speed.fastest = std::sqrt(fastest_sq);
+  start.speed.acceleration = body.gravity().norm() + std::sqrt(acceleration_sq);
   start.speed.reachable = std::sqrt(2 * start.energy / health_[index].lightest);
   StickySubsteps& sticky = health_[index].substeps;
   const std::int64_t budget = settings_.health.step_budget;
@@ -246,8 +249,13 @@ bool ClothSystem::healthy(std::size_t index, Real t, Real h, StepStart& start) {
   const Real max_speed = scaled_speed_limit(start.speed, health_[index].size, h,
                                             health.speed_growth, settings_.max_speed);
   const Real max_speed_sq = max_speed * max_speed;
-  applied_after_.resize(state.size());
-  body.applied_forces(t + h, applied_after_);
+  // the applied forces change within a step only with the wind (external ones are cleared after)
+  std::span<const Vec3> applied_after = applied_before_;
+  if (body.params().wind.enabled) {
+    applied_after_.resize(state.size());
+    body.applied_forces(t + h, applied_after_);
+    applied_after = applied_after_;
+  }
   // work by gravity and external forces over the step, estimated from the displacement and
   // from the mean of the start and end velocities, whichever is larger: the first misses the
   // energy explicit Euler gains in a step from rest (positions have not moved yet), the second
@@ -257,24 +265,28 @@ bool ClothSystem::healthy(std::size_t index, Real t, Real h, StepStart& start) {
   // the work of the applied forces alone (gravity's is in the mechanical energy), by the
   // trapezoidal rule: exact for a force constant over the step
   Real applied_work = 0;
+  // ClothBody::kinetic_energy and gravitational_energy, summed in the same order in this pass
+  Real kinetic = 0, gravitational = 0;
   for (std::size_t p = 0; p < state.size(); ++p) {
     if (!state.x[p].allFinite()) return false;
     const Real speed_sq = state.v[p].squaredNorm();
     if (!std::isfinite(speed_sq) || speed_sq > max_speed_sq) return false;
+    const Real mass = body.model().mass[p];
+    kinetic += 0.5 * mass * speed_sq;
+    gravitational -= mass * body.gravity().dot(state.x[p]);
     const Vec3 displacement = state.x[p] - backup_.x[p];
-    const Vec3 force = body.model().mass[p] * body.gravity() + body.external_forces()[p];
+    const Vec3 force = mass * body.gravity() + body.external_forces()[p];
     work_by_displacement += force.dot(displacement);
     work_by_velocity += force.dot(0.5 * h * (state.v[p] + backup_.v[p]));
-    applied_work += 0.5 * (applied_before_[p] + applied_after_[p]).dot(displacement);
+    applied_work += 0.5 * (applied_before_[p] + applied_after[p]).dot(displacement);
   }
   const Real work = std::max({work_by_displacement, work_by_velocity, Real{0}});
-  const Real energy_after = body.kinetic_energy() + body.elastic_energy_in_steps_of(h);
+  const Real energy_after = kinetic + body.elastic_energy_in_steps_of(h);
   const Real growth = settings_.max_energy_growth;
   if (energy_after > growth * (start.energy + work) + energy_floor(index)) return false;
   // slow growth, judged on the first attempt only: a window cannot judge a retried step, and
   // the balance starts over after it
   const EnergyBalance& balance = health_[index].balance;
-  const Real gravitational = body.gravitational_energy();
   if (start.first &&
       !balance.within(balance.budget_after(energy_after + gravitational, applied_work),
                       energy_scale(index, energy_after), health.energy_tolerance, window_)) {
