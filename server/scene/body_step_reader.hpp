@@ -12,7 +12,9 @@ inline constexpr Real kMinBodyStep = 1e-6;
 inline constexpr Real kMaxBodyStep = 1;
 
 /// The body's "max_step" within [kMinBodyStep, kMaxBodyStep], infinite when absent. Refused
-/// when the time step would need more substeps than the step budget lets a step take.
-Real read_max_step(const ObjectReader& body, Real time_step, const HealthSettings& health);
+/// when the time step would need more substeps, each of `internal_steps` internal steps of its
+/// integrator (xpbd's substeps), than the step budget lets a step take.
+Real read_max_step(const ObjectReader& body, Real time_step, const HealthSettings& health,
+                   int internal_steps = 1);
 
 }  // namespace felt::scene_json

@@ -11,6 +11,7 @@
 
 #include "core/cloth/cloth_grid.hpp"
 #include "core/cloth/mesh_cloth.hpp"
+#include "core/integrate/xpbd_integrator.hpp"
 #include "scene/body_step_reader.hpp"
 #include "scene/cloth_integrator_reader.hpp"
 #include "scene/haptics_reader.hpp"
@@ -273,7 +274,9 @@ ClothBody read_cloth(const ObjectReader& body, std::size_t index, const SceneLoa
   read_anchors(body, cloth);
   read_constraint_forces(body, cloth);
   check_stable_step(body, cloth, time_step, health);
-  cloth.set_max_step(read_max_step(body, time_step, health));
+  // xpbd's substeps are the one integrator work the budget cannot cut (xpbd_integrator.hpp)
+  const auto* xpbd = dynamic_cast<const XpbdIntegrator*>(&cloth.integrator());
+  cloth.set_max_step(read_max_step(body, time_step, health, xpbd ? xpbd->substeps() : 1));
   return cloth;
 }
 

@@ -107,5 +107,30 @@ TEST(BodyMaxStep, AStepBeyondTheRangeOrTheBudgetIsRefusedWithTheReason) {
   EXPECT_TRUE(load_scene(document));
 }
 
+TEST(BodyMaxStep, XpbdsSubstepsCountInTheBudgetWithTheBodysOwn) {
+  // xpbd's substeps set its compliance, so the budget cannot cut them: a scene whose substeps
+  // the budget cannot afford is refused
+  json document = cloth_scene(0.001);
+  document["health"] = {{"step_budget", 100}};
+  document["bodies"][0]["integrator"] = {{"name", "xpbd"}, {"substeps", 200}};
+  auto refused = load_scene(document);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().path, "bodies[0].integrator");
+  EXPECT_NE(refused.error().message.find("takes 200 internal steps a step"), std::string::npos)
+      << refused.error().message;
+  // 10 substeps of the body's own, each of 20 xpbd substeps: 200
+  document["bodies"][0]["integrator"]["substeps"] = 20;
+  document["bodies"][0]["max_step"] = 1e-4;
+  refused = load_scene(document);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().path, "bodies[0].max_step");
+  EXPECT_NE(refused.error().message.find("10 substeps of the time step 0.001 s, each of 20 "
+                                         "internal steps"),
+            std::string::npos)
+      << refused.error().message;
+  document["bodies"][0]["integrator"]["substeps"] = 10;
+  EXPECT_TRUE(load_scene(document));
+}
+
 }  // namespace
 }  // namespace felt

@@ -122,11 +122,13 @@ int ClothSystem::step_checked(std::size_t index, Real t, Real h, std::int64_t re
   start.speed.reachable = std::sqrt(2 * start.energy / health_[index].lightest);
   StickySubsteps& sticky = health_[index].substeps;
   const std::int64_t budget = settings_.health.step_budget;
+  const std::int64_t affordable = affordable_substeps(index);
   const std::int64_t fewest = fewest_substeps(index, h);
   spent_ = 0;
   capped_ = false;
   const RescueOutcome outcome = step_with_rescue(
-      static_cast<int>(std::min(budget, std::max<std::int64_t>(fewest, sticky.start(relax_steps)))),
+      static_cast<int>(
+          std::min(affordable, std::max<std::int64_t>(fewest, sticky.start(relax_steps)))),
       settings_.max_doublings,
       [&](int substeps) {
         advance(index, t, h, substeps, colliders, yield_point);
@@ -139,9 +141,12 @@ int ClothSystem::step_checked(std::size_t index, Real t, Real h, std::int64_t re
         body.integrator().reset();
         start.first = false;
       },
-      [&](int next) { return spent_ + next <= budget; });
+      // each substep takes at least the internal steps no limit cuts (xpbd's substeps)
+      [&](int next) {
+        return spent_ + std::int64_t{next} * body.integrator().least_internal_steps() <= budget;
+      });
   sticky.record(outcome);
-  record_counts(index, outcome.substeps, fewest > budget || outcome.out_of_budget);
+  record_counts(index, outcome.substeps, fewest > affordable || outcome.out_of_budget);
   if (outcome.rescued) {
     stats_.rescued = true;
     stats_.rescued_bodies.push_back(static_cast<std::uint32_t>(index));
@@ -163,13 +168,13 @@ int ClothSystem::step_checked(std::size_t index, Real t, Real h, std::int64_t re
 int ClothSystem::step_unchecked(std::size_t index, Real t, Real h,
                                 std::span<const Collider> colliders,
                                 const std::function<void()>& yield_point) {
-  const std::int64_t budget = settings_.health.step_budget;
+  const std::int64_t affordable = affordable_substeps(index);
   const std::int64_t fewest = fewest_substeps(index, h);
-  const int substeps = static_cast<int>(std::min(budget, fewest));
+  const int substeps = static_cast<int>(std::min(affordable, fewest));
   spent_ = 0;
   capped_ = false;
   advance(index, t, h, substeps, colliders, yield_point);
-  record_counts(index, substeps, fewest > budget);
+  record_counts(index, substeps, fewest > affordable);
   ClothBody& body = bodies_[index];
   const bool finite = timed(stats_.profile, StepStage::kHealth, [&] {
     return all_finite(body.state().x) && all_finite(body.state().v);
@@ -179,6 +184,11 @@ int ClothSystem::step_unchecked(std::size_t index, Real t, Real h,
     stop(index);
   }
   return substeps;
+}
+
+std::int64_t ClothSystem::affordable_substeps(std::size_t index) const {
+  return std::max<std::int64_t>(
+      1, settings_.health.step_budget / bodies_[index].integrator().least_internal_steps());
 }
 
 void ClothSystem::record_counts(std::size_t index, int substeps, bool over_budget) {

@@ -124,6 +124,9 @@ class ClothSystem {
   /// within its share of what the step budget has left.
   void advance(std::size_t index, Real t, Real h, int substeps, std::span<const Collider> colliders,
                const std::function<void()>& yield_point);
+  /// The most substeps the step budget affords cloth `index`, each of at least its integrator's
+  /// least internal steps (xpbd's substeps).
+  std::int64_t affordable_substeps(std::size_t index) const;
   /// Cloth `index` took `substeps` in its step, which reached its budget if `over_budget` or an
   /// integrator call stopped at its cap.
   void record_counts(std::size_t index, int substeps, bool over_budget);

@@ -4,6 +4,8 @@
 // solved by the filtered PCG so pins hold exactly, started from the last step's Δv. Unconditionally
 // stable on a linear oscillator, first order, and it damps energy.
 
+#include <algorithm>
+
 #include "core/integrate/filtered_conjugate_gradient.hpp"
 #include "core/integrate/implicit_system_matrix.hpp"
 #include "core/integrate/integrator.hpp"
@@ -20,10 +22,18 @@ class ImplicitEuler final : public Integrator {
   /// The linear solve of the last step.
   const FilteredConjugateGradient::Result& last_solve() const { return last_solve_; }
   FilteredConjugateGradient& solver() { return solver_; }
+  /// Each conjugate-gradient iteration counts in the step budget as an internal step (a pass
+  /// over the springs, as an explicit step is): a solve takes at most `cap` of them, and never
+  /// more than kMaxIterations.
+  void limit_internal_steps(int cap) override {
+    solver_.max_iterations = std::clamp(cap, 1, kMaxIterations);
+  }
+  int last_internal_steps() const override { return std::max(1, last_solve_.iterations); }
   /// The last solve stopped at the solver's max_iterations unconverged.
   bool last_step_capped() const override {
     return !last_solve_.converged && last_solve_.iterations >= solver_.max_iterations;
   }
+  static constexpr int kMaxIterations = 1000;
 
  private:
   ForceJacobian jacobian_;

@@ -32,11 +32,16 @@ class Integrator {
   /// the implicit schemes and for adaptive_rk, which chooses its own steps.
   virtual Real step_limit(const OscillatorMode& /*mode*/) const { return kNoStepLimit; }
 
-  /// For an integrator that divides a step itself (adaptive_rk): the most internal steps each
-  /// later call may take (never more than its own cap), and how many the last call took; 1 for
-  /// the others. A world's step budget counts them (HealthSettings::step_budget).
+  /// For an integrator that divides a step itself or iterates in it (adaptive_rk's internal
+  /// steps, implicit Euler's conjugate-gradient iterations, projective dynamics' iterations,
+  /// xpbd's substeps): the most internal steps each later call may take (never more than its
+  /// own cap), and how many the last call took; 1 for the others. A world's step budget counts
+  /// them (HealthSettings::step_budget).
   virtual void limit_internal_steps(int /*cap*/) {}
   virtual int last_internal_steps() const { return 1; }
+  /// The internal steps every call takes however it is limited: xpbd's substeps, which set its
+  /// springs' compliance; 1 for the others.
+  virtual int least_internal_steps() const { return 1; }
   /// The last call stopped at a cap before it was done: adaptive_rk accepted an internal step
   /// its error control rejected, implicit Euler's conjugate gradients stopped unconverged.
   virtual bool last_step_capped() const { return false; }

@@ -24,7 +24,8 @@ void ProjectiveDynamics::step(const DynamicSystem& system, ParticleState& state,
   iterate_ = state.x;
   previous_ = state.x;
   Real omega = 1;
-  for (int k = 0; k < iterations_; ++k) {
+  last_iterations_ = std::min(iterations_, cap_);
+  for (int k = 0; k < last_iterations_; ++k) {
     project(state, iterate_);
     linear_step_.assemble(inv_mass, state, h, force_);
     linear_step_.solve(inv_mass, h, dv_);

@@ -18,6 +18,7 @@
 // method (Wang, "A Chebyshev Semi-Iterative Approach for Accelerating Projective and
 // Position-based Dynamics", SIGGRAPH Asia 2015), given an estimate ρ of the iterations' rate.
 
+#include <algorithm>
 #include <vector>
 
 #include "core/integrate/distance_constraint.hpp"
@@ -42,6 +43,12 @@ class ProjectiveDynamics final : public Integrator {
   int iterations() const { return iterations_; }
   Real chebyshev_rho() const { return chebyshev_rho_; }
 
+  /// Each local/global iteration counts in the step budget as an internal step: a step takes
+  /// at most `cap` of them, and never more than its `iterations`.
+  void limit_internal_steps(int cap) override { cap_ = std::max(1, cap); }
+  int last_internal_steps() const override { return last_iterations_; }
+  bool last_step_capped() const override { return last_iterations_ < iterations_; }
+
  private:
   // Wang 2015's delay S before the acceleration starts (few: a served step affords few
   // iterations) and its under-relaxation γ
@@ -55,6 +62,8 @@ class ProjectiveDynamics final : public Integrator {
 
   int iterations_;
   Real chebyshev_rho_;
+  int cap_ = kMaxIterations;
+  int last_iterations_ = 0;
   ConstraintClasses springs_;
   std::vector<LinearPair> pairs_;
   std::vector<Vec3> others_, force_, iterate_, previous_;

@@ -33,6 +33,11 @@ class XpbdIntegrator final : public Integrator {
   Real constraint_substep(Real h) const override { return h / substeps_; }
 
   int substeps() const { return substeps_; }
+  /// Its substeps count in the step budget as internal steps; their number is the scene's
+  /// (the loader refuses one the budget cannot afford), not cut by the budget, since the
+  /// springs' compliance is set for substeps of h / substeps.
+  int last_internal_steps() const override { return substeps_; }
+  int least_internal_steps() const override { return substeps_; }
 
  private:
   void project_constraints(std::span<const Real> inv_mass, Real h, ParticleState& state) const;

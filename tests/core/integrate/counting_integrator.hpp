@@ -22,6 +22,8 @@ class CountingIntegrator final : public Integrator {
   Real step_limit(const OscillatorMode& mode) const override { return inner_->step_limit(mode); }
   void limit_internal_steps(int cap) override { inner_->limit_internal_steps(cap); }
   int last_internal_steps() const override { return inner_->last_internal_steps(); }
+  int least_internal_steps() const override { return inner_->least_internal_steps(); }
+  Real constraint_substep(Real h) const override { return inner_->constraint_substep(h); }
   bool last_step_capped() const override { return inner_->last_step_capped(); }
   Real position_tolerance() const override { return inner_->position_tolerance(); }
 
