@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/cloth/cloth_stable_step.hpp"
+#include "core/integrate/implicit_euler.hpp"
 #include "core/integrate/projective_dynamics.hpp"
 #include "core/integrate/runge_kutta_integrators.hpp"
 #include "core/integrate/xpbd_integrator.hpp"
@@ -19,9 +20,11 @@ std::unique_ptr<Integrator> read_cloth_integrator(const ObjectReader& body) {
   std::uint32_t iterations = ProjectiveDynamics::kDefaultIterations;
   Real chebyshev_rho = 0;
   Real tolerance = AdaptiveRungeKutta::kDefaultTolerance;
+  Real solve_tolerance = FilteredConjugateGradient().tolerance;
   if (body.has("integrator") && body.at("integrator").is_object()) {
-    const ObjectReader integrator(body.at("integrator"), body.path_of("integrator"),
-                                  {"name", "substeps", "iterations", "chebyshev_rho", "tolerance"});
+    const ObjectReader integrator(
+        body.at("integrator"), body.path_of("integrator"),
+        {"name", "substeps", "iterations", "chebyshev_rho", "tolerance", "solve_tolerance"});
     name = integrator.string("name", name);
     name_path = integrator.path_of("name");
     substeps = integrator.count("substeps", substeps, 1, XpbdIntegrator::kMaxSubsteps);
@@ -42,11 +45,22 @@ std::unique_ptr<Integrator> read_cloth_integrator(const ObjectReader& body) {
     if (integrator.has("tolerance") && name != "adaptive_rk") {
       fail(integrator.path_of("tolerance"), "applies to adaptive_rk only");
     }
+    // the conjugate gradients' residual relative to the right-hand side: below 1e-12 it is
+    // rounding, above 1e-2 the step is barely implicit
+    solve_tolerance = integrator.ranged("solve_tolerance", solve_tolerance, 1e-12, 1e-2, "");
+    if (integrator.has("solve_tolerance") && name != "implicit_euler") {
+      fail(integrator.path_of("solve_tolerance"), "applies to implicit_euler only");
+    }
   } else {
     name = body.string("integrator", name);
   }
   if (name == "xpbd") return std::make_unique<XpbdIntegrator>(static_cast<int>(substeps));
   if (name == "adaptive_rk") return std::make_unique<AdaptiveRungeKutta>(tolerance);
+  if (name == "implicit_euler") {
+    auto euler = std::make_unique<ImplicitEuler>();
+    euler->solver().tolerance = solve_tolerance;
+    return euler;
+  }
   if (name == "projective_dynamics") {
     return std::make_unique<ProjectiveDynamics>(static_cast<int>(iterations), chebyshev_rho);
   }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/integrate/implicit_euler.hpp"
 #include "core/integrate/projective_dynamics.hpp"
 #include "core/integrate/xpbd_integrator.hpp"
 
@@ -394,6 +395,20 @@ TEST(SceneLoader, HealthKeysAreReadAndBounded) {
   EXPECT_EQ(error_of(doc), "health.speed_growth: must be between 1.1 and 1e+06");
   doc["health"] = {{"max_substep_doublings", 11}};
   EXPECT_EQ(error_of(doc), "health.max_substep_doublings: must be between 0 and 10");
+}
+
+TEST(SceneLoader, ImplicitEulersSolveToleranceIsItsOwnKeyWithinItsRange) {
+  json doc = json::parse(R"({"bodies": [{"type": "cloth", "grid": {"nx": 4, "ny": 4},
+      "integrator": {"name": "implicit_euler", "solve_tolerance": 1e-5}}]})");
+  auto scene = load_scene(doc);
+  ASSERT_TRUE(scene) << scene.error().what();
+  auto* euler = dynamic_cast<ImplicitEuler*>(&scene->world.cloths()[0].integrator());
+  ASSERT_NE(euler, nullptr);
+  EXPECT_EQ(euler->solver().tolerance, 1e-5);
+  doc["bodies"][0]["integrator"]["solve_tolerance"] = 0.5;
+  EXPECT_EQ(error_of(doc), "bodies[0].integrator.solve_tolerance: must be between 1e-12 and 0.01");
+  doc["bodies"][0]["integrator"] = {{"name", "kang"}, {"solve_tolerance", 1e-5}};
+  EXPECT_EQ(error_of(doc), "bodies[0].integrator.solve_tolerance: applies to implicit_euler only");
 }
 
 }  // namespace
