@@ -3,18 +3,16 @@
 namespace felt {
 namespace {
 
-// frames are made while some proxy was rendered this recently
-constexpr auto kIdle = std::chrono::seconds(1);
 // retired frames kept for reuse: the latest, one a reader may still hold, one free
 constexpr std::size_t kPoolSize = 3;
 
 }  // namespace
 
 std::shared_ptr<const HapticFrame> LiveHapticFrames::current() {
-  live_.ask_for_normals();  // force shading and local models read them
   const SteadyClock::time_point now = SteadyClock::now();
+  const bool in_use = live_.render_haptics(now);
   auto frame = latest_.load();
-  if (used_.use(kIdle, now) && frame) return frame;
+  if (in_use && frame) return frame;
   // the physics thread may have stopped making frames: start from a still copy of the latest
   std::lock_guard lock(mutex_);
   frame = latest_.load();
@@ -26,7 +24,7 @@ std::shared_ptr<const HapticFrame> LiveHapticFrames::current() {
 }
 
 void LiveHapticFrames::publish(SteadyClock::time_point now) {
-  if (!used_.recent(kIdle, now)) return;
+  if (!live_.haptics_rendering(now)) return;
   std::lock_guard lock(mutex_);
   make_pooled(latest_.load().get(), now);
 }

@@ -12,7 +12,6 @@
 #include "runtime/haptic_frame.hpp"
 #include "runtime/live_scene.hpp"
 #include "runtime/published.hpp"
-#include "runtime/recent_use.hpp"
 
 namespace felt {
 
@@ -34,13 +33,12 @@ class LiveHapticFrames {
   std::shared_ptr<HapticFrame> make_pooled(const HapticFrame* previous,
                                            SteadyClock::time_point now);
 
-  LiveScene& live_;  ///< asked for normals while proxies render
+  LiveScene& live_;  ///< told of every render (LiveScene::render_haptics)
   TriangleQueryKind structure_;
   Published<HapticFrame> latest_;
   /// the frames made lately; one nobody else holds any more is refitted, not copied
   std::vector<std::shared_ptr<HapticFrame>> pool_;
   std::mutex mutex_;  ///< held while a frame is made
-  RecentUse used_;    ///< by current()
 };
 
 }  // namespace felt

@@ -26,10 +26,11 @@ SceneEvent LiveScene::event(SceneEvent::Kind kind, ClientId by) const {
 }
 
 void LiveScene::publish() {
-  auto snapshot = make_snapshot(
-      scene.world, latest_.load().get(),
-      local_models_.load(std::memory_order_relaxed) ? &compliance_ : nullptr,
-      normals_asked_.recent(kNormalsKept) ? VertexNormals::kComputed : VertexNormals::kLeftOut);
+  auto snapshot =
+      make_snapshot(scene.world, latest_.load().get(),
+                    local_models_.load(std::memory_order_relaxed) ? &compliance_ : nullptr,
+                    haptics_rendering(std::chrono::steady_clock::now()) ? VertexNormals::kComputed
+                                                                        : VertexNormals::kLeftOut);
   snapshot->version = ++published_;
   latest_.store(std::move(snapshot));
   stale_.store(false, std::memory_order_relaxed);

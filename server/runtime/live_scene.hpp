@@ -52,7 +52,7 @@ class LiveScene {
   std::uint64_t published() const { return published_; }
 
   /// Publishes a snapshot of the world now: with vertex normals while haptics render against
-  /// the snapshots (ask_for_normals in the last kNormalsKept), without otherwise.
+  /// the snapshots (render_haptics in the last kHapticsKept), without otherwise.
   void publish();
   /// After steps: publishes a snapshot of them while someone read one lately (latest() in the
   /// last kReadersKept); else leaves the latest as it was, stale, until catch_up. A scene
@@ -64,10 +64,18 @@ class LiveScene {
   /// The latest snapshot lacks steps since taken (publish_steps). Any thread.
   bool stale() const { return stale_.load(std::memory_order_relaxed); }
   static constexpr auto kReadersKept = std::chrono::seconds(1);
-  /// Something renders haptics against the snapshots now and needs their normals. Any thread.
-  void ask_for_normals() { normals_asked_.use(kNormalsKept); }
-  /// How long an ask_for_normals keeps them in the snapshots.
-  static constexpr auto kNormalsKept = std::chrono::seconds(1);
+  /// A proxy renders haptics against the snapshots at `now`: for kHapticsKept the snapshots
+  /// carry vertex normals (force shading and local models read them) and LiveHapticFrames
+  /// makes frames after each publication. Whether haptics rendered within kHapticsKept before.
+  /// Any thread.
+  bool render_haptics(std::chrono::steady_clock::time_point now) {
+    return haptics_.use(kHapticsKept, now);
+  }
+  /// Whether a proxy rendered within kHapticsKept of `now`. Any thread.
+  bool haptics_rendering(std::chrono::steady_clock::time_point now) const {
+    return haptics_.recent(kHapticsKept, now);
+  }
+  static constexpr auto kHapticsKept = std::chrono::seconds(1);
   /// A local-model proxy renders in the scene: its snapshots carry each body's point compliance
   /// from now on (the bodies' stiffness for the local models; two sparse factorizations per body
   /// every kComplianceRefresh on a thread of their own, which a scene no remote device touches
@@ -89,7 +97,7 @@ class LiveScene {
   Published<SceneSnapshot> latest_;
   std::uint64_t published_ = 0;
   std::atomic<bool> local_models_{false};
-  RecentUse normals_asked_;
+  RecentUse haptics_;       ///< render_haptics
   mutable RecentUse read_;  ///< of the latest snapshot
   std::atomic<bool> stale_{false};
   /// started by the first snapshot that needs it, on the physics thread (whose nice it takes)

@@ -1,5 +1,7 @@
 #include "runtime/live_scene.hpp"
 
+#include <chrono>
+
 #include <gtest/gtest.h>
 
 #include "core/cloth/cloth_point_compliance.hpp"
@@ -29,7 +31,7 @@ TEST(LiveScene, SnapshotsCarryNormalsOnlyWhileHapticsAskForThem) {
   ManualClock clock;
   LiveScene live(flat_cloth_scene(Vec3(0, -9.81, 0)), 0, clock);
   EXPECT_TRUE(live.latest()->bodies[0].normals.empty());  // nobody renders haptics
-  live.ask_for_normals();
+  live.render_haptics(std::chrono::steady_clock::now());
   live.publish();
   const BodySnapshot& body = live.latest()->bodies[0];
   std::vector<Vec3> normals;

@@ -2,7 +2,7 @@
 // The matrix of a backward Euler step, A = M − h ∂f/∂v − h² ∂f/∂x (Baraff & Witkin 1998,
 // eq. 15; thesis 1 §4.3), assembled once per step from a ForceJacobian and multiplied in every
 // conjugate-gradient iteration. Stored as structure of arrays with the two derivatives folded
-// into two scalars per pair: a product reads 40 bytes a pair and writes one vector, where
+// into two scalars per pair: a product reads 48 bytes a pair and writes one vector, where
 // multiplying both Jacobians read 56 and wrote two (issue 29, item 3).
 
 #include <cstdint>
