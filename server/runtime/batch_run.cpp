@@ -180,8 +180,8 @@ BatchRunStats run_batch(Scene& scene, std::uint64_t steps, const BatchHaptics& h
     if (!world.cloth_system().bodies().empty()) {
       record_stages(report.cloth_profile, world.cloth_system().last_stats().substeps, stats.cloth);
     }
-    if (!world.solids().bodies().empty()) {
-      record_solid_step(world.solids().last_stats(), stats.solids);
+    if (!std::as_const(world).solids().bodies().empty()) {
+      record_solid_step(std::as_const(world).solids().last_stats(), stats.solids);
     }
     if (observer) {
       const auto observe_start = std::chrono::steady_clock::now();
@@ -216,7 +216,7 @@ BatchRunStats run_batch(Scene& scene, std::uint64_t steps, const BatchHaptics& h
           stats.nonfinite || !all_finite(body.state().x) || !all_finite(body.state().v);
       stats.bodies.push_back(cloth_stats(body));
     } else {
-      const SolidBody& body = world.solids().bodies()[ref.index];
+      const SolidBody& body = std::as_const(world).solids().bodies()[ref.index];
       stats.nonfinite =
           stats.nonfinite || !all_finite(body.positions()) || !all_finite(body.velocities());
       stats.bodies.push_back(solid_stats(body));

@@ -224,6 +224,13 @@ SolidBody read_solid(const ObjectReader& body, std::size_t index,
     }
     if (name != kTimeCorrectedVerlet) solid.set_integrator(make_integrator(name));
   }
+  if (!(solid.stable_time_step() > 0)) {
+    fail(body.path_of("integrator"),
+         std::string(solid.integrator()->name()) +
+             " gains energy at every step on a body without damping: no step is stable. Give "
+             "the material damping, or choose symplectic_euler, rk4 or the default " +
+             std::string(kTimeCorrectedVerlet));
+  }
   if (time_step / solid.stable_time_step() > kMaxSubsteps) {
     fail(body.path(), "too stiff for its node mass: a stable step would be " +
                           std::to_string(solid.stable_time_step()) +

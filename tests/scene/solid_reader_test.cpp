@@ -174,6 +174,38 @@ TEST(SolidReader, IntegratorsThatApplyToTheModelAndWhyTheOthersDoNot) {
   }
 }
 
+// Explicit Euler and the midpoint rule grow an undamped mode at every step (their stability
+// polynomials leave the unit circle on the imaginary axis): no substeps help, so the scene is
+// refused. With Rayleigh damping β explicit Euler keeps a mode stable while h ≤ c/ω² = β,
+// which the body's stable step follows (0.7 of it) instead of position Verlet's far longer one.
+TEST(SolidReader, RefusesAnIntegratorNoStepKeepsStableWithoutDamping) {
+  const auto load_fem = [](const char* integrator, Real damping) {
+    json doc = cube_scene();
+    doc["bodies"][0]["model"] = "corotated_fem";
+    doc["bodies"][0]["fem"] = {{"young_modulus", 1e4}, {"damping", damping}};
+    doc["bodies"][0]["integrator"] = integrator;
+    return load_scene(doc);
+  };
+  for (const char* integrator : {"explicit_euler", "midpoint"}) {
+    const auto refused = load_fem(integrator, 0);
+    ASSERT_FALSE(refused) << integrator;
+    EXPECT_NE(std::string(refused.error().what())
+                  .find(std::string("bodies[0].integrator: ") + integrator +
+                        " gains energy at every step on a body without damping"),
+              std::string::npos)
+        << refused.error().what();
+  }
+  EXPECT_TRUE(load_fem("rk4", 0));
+  constexpr Real kBeta = 2e-4;
+  const auto damped = load_fem("explicit_euler", kBeta);
+  ASSERT_TRUE(damped) << damped.error().what();
+  const Real stable = damped->world.solids().bodies()[0].stable_time_step();
+  EXPECT_GT(stable, 0);
+  EXPECT_LE(stable, 0.7 * kBeta * (1 + 1e-9));
+  const auto verlet = load_fem("symplectic_euler", kBeta);
+  EXPECT_GT(verlet->world.solids().bodies()[0].stable_time_step(), 2 * stable);
+}
+
 // A material whose stable step is thousands of times below the scene's step would stall the
 // physics thread in substeps: it is refused when the scene loads.
 TEST(SolidReader, RefusesAMaterialTooStiffForItsMass) {

@@ -9,12 +9,6 @@
 #include "core/step/substeps_for.hpp"
 
 namespace felt {
-namespace {
-
-// keeps rounding noise of a body at rest (or weightless) from counting as growth
-constexpr Real kEnergyFloor = 1e-9;
-
-}  // namespace
 
 std::uint32_t ClothSystem::add_body(ClothBody body) {
   BodyHealth health;
@@ -85,7 +79,7 @@ const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider
     energy_.resize(bodies_.size());
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
       energy_[b] = bodies_[b].kinetic_energy() + bodies_[b].elastic_energy_in_steps_of(h);
-      health_[b].balance.reset(mechanical_energy(bodies_[b], h));
+      health_[b].balance.reset(mechanical_energy(bodies_[b], h), energy_scale(b, energy_[b]));
     }
   }
   const auto relax_steps = static_cast<std::int64_t>(std::ceil(settings_.health.relax_after / h));
@@ -151,7 +145,7 @@ int ClothSystem::step_checked(std::size_t index, Real t, Real h, std::int64_t re
     stats_.rescued = true;
     stats_.rescued_bodies.push_back(static_cast<std::uint32_t>(index));
     // the growth before the rescue cannot be undone: the balance starts over from here
-    health_[index].balance.reset(mechanical_energy(body, h));
+    health_[index].balance.reset(mechanical_energy(body, h), energy_scale(index, energy_[index]));
   } else if (outcome.ok) {
     // healthy() measured the state the step left
     health_[index].balance.accept(energy_[index] + gravitational_, work_,
@@ -160,7 +154,7 @@ int ClothSystem::step_checked(std::size_t index, Real t, Real h, std::int64_t re
     body.state().x = backup_.x;
     stop(index);
     energy_[index] = body.elastic_energy_in_steps_of(h);
-    health_[index].balance.reset(mechanical_energy(body, h));
+    health_[index].balance.reset(mechanical_energy(body, h), energy_scale(index, energy_[index]));
   }
   return outcome.substeps;
 }

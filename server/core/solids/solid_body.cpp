@@ -326,10 +326,15 @@ Real SolidBody::stable_time_step() const {
           // limit is exact when K and D share their modes, FEM's D = β K; the mass-spring
           // damping acts along the edges only, and the tests check its bodies at the estimate);
           // pinning nodes removes rows and columns, which cannot raise the largest one
-          return kDeformationMargin *
-                 verlet_step_limit(
-                     {inv_mass * (model.largest_stiffness_eigenvalue() + anchor_stiffness),
-                      inv_mass * (model.largest_damping_eigenvalue() + anchor_damping)});
+          const OscillatorMode fastest{
+              inv_mass * (model.largest_stiffness_eigenvalue() + anchor_stiffness),
+              inv_mass * (model.largest_damping_eigenvalue() + anchor_damping)};
+          // the thesis's Verlet, or an integrator whose limit is tighter: explicit Euler and
+          // the midpoint rule grow an undamped mode at any step (0), so that a step chosen
+          // by Verlet's limit let them grow 10¹⁰⁵ times in a second
+          Real limit = verlet_step_limit(fastest);
+          if (integrator_) limit = std::min(limit, integrator_->step_limit(fastest));
+          return kDeformationMargin * limit;
         }
       },
       model_state_->model);
@@ -341,6 +346,14 @@ Real SolidBody::kinetic_energy() const {
   return 0.5 * material_.node_mass * sum;
 }
 
+Real SolidBody::integrated_kinetic_energy(Real h) const {
+  // as finish_step: the integrator's velocities, or the backward difference
+  if (integrator_ && integrated_motion_.size() == x_.size()) return kinetic_energy();
+  Real sum = 0;
+  for (std::size_t n = 0; n < x_.size(); ++n) sum += (x_[n] - x_prev_[n]).squaredNorm();
+  return 0.5 * material_.node_mass * sum / (h * h);
+}
+
 Real SolidBody::gravitational_energy(const Vec3& gravity) const {
   Real sum = 0;
   for (const Vec3& x : x_) sum -= gravity.dot(x);
@@ -348,15 +361,22 @@ Real SolidBody::gravitational_energy(const Vec3& gravity) const {
 }
 
 Real SolidBody::elastic_energy() const {
-  return std::visit(
-      [&](const auto& model) -> Real {
-        if constexpr (std::is_same_v<std::decay_t<decltype(model)>, ShapeMatching>) {
-          return model.energy(x_, material_.node_mass);
-        } else {
-          return model.energy(x_);
-        }
-      },
-      model_state_->model);
+  Real anchors = 0;
+  for (const Anchor& a : anchors_) {
+    Vec3 p = Vec3::Zero();
+    for (int c = 0; c < 4; ++c) p += a.point.weights[c] * x_[a.point.nodes[c]];
+    anchors += 0.5 * a.stiffness * (a.target - p).squaredNorm();
+  }
+  return anchors +
+         std::visit(
+             [&](const auto& model) -> Real {
+               if constexpr (std::is_same_v<std::decay_t<decltype(model)>, ShapeMatching>) {
+                 return model.energy(x_, material_.node_mass);
+               } else {
+                 return model.energy(x_);
+               }
+             },
+             model_state_->model);
 }
 
 }  // namespace felt

@@ -192,12 +192,18 @@ class SolidBody {
   /// positions, changed their velocities): the backward difference, or with an integrator its
   /// own velocities for the nodes collision handling did not touch.
   void finish_step(Real h);
-  /// The largest step this body's stiffness allows for the explicit integration, s.
+  /// The largest step this body's stiffness allows for the explicit integration, s: by
+  /// position Verlet's limit, or its integrator's when that is tighter; 0 when no step is
+  /// stable (explicit Euler or the midpoint rule without damping).
   Real stable_time_step() const;
   /// K = −∂f/∂x of the model at rest (3n × 3n), or null for shape matching (no force model).
   const Eigen::SparseMatrix<Real>* rest_stiffness() const;
 
   Real kinetic_energy() const;
+  /// The kinetic energy finish_step(h) would leave if nothing moved the nodes after advance(h),
+  /// J: that of the motion the step integrated, before contact changes it.
+  Real integrated_kinetic_energy(Real h) const;
+  /// The model's elastic energy plus ½ k |target − p|² over the anchors, J.
   Real elastic_energy() const;
   /// −Σ m g·x over the nodes, J: zero at the origin, so only its changes mean anything.
   Real gravitational_energy(const Vec3& gravity) const;

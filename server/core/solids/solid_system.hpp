@@ -15,6 +15,7 @@
 #include "core/solids/solid_body.hpp"
 #include "core/solids/solid_collision_detection.hpp"
 #include "core/step/body_step_counts.hpp"
+#include "core/step/energy_balance.hpp"
 #include "core/step/health_settings.hpp"
 #include "core/step/step_profile.hpp"
 #include "core/step/sticky_substeps.hpp"
@@ -29,6 +30,10 @@ struct SolidStepSettings {
   /// m/s; a node faster than this after a step is taken as an exploding state, besides the
   /// limit scaled from the scene (HealthSettings::speed_growth). None by default.
   Real max_speed = std::numeric_limits<Real>::infinity();
+  /// A step after which the solids' kinetic plus elastic energy exceeds this factor times what
+  /// it was plus the work gravity and external forces did is taken as exploding (the world's
+  /// WorldSettings::max_energy_growth).
+  Real max_energy_growth = 2;
   HealthSettings health{};  ///< the world's (WorldSettings::health)
 };
 
@@ -60,16 +65,28 @@ class SolidSystem {
   /// Removes the body at `index`; the later ones move down by one. The contact caches start
   /// over, as they hold positions in the list of bodies.
   void remove_body(std::uint32_t index);
-  std::vector<SolidBody>& bodies() { return bodies_; }
+  /// Mutable access: anything that edits a solid through it (an anchor moved, a material
+  /// changed) makes the next step recompute the energy its health check starts from.
+  std::vector<SolidBody>& bodies() {
+    energy_valid_ = false;
+    return bodies_;
+  }
   const std::vector<SolidBody>& bodies() const { return bodies_; }
+  /// A force on node `node` of solid `index` for the next step. An external force does not
+  /// change the energy the health check carries over, so unlike bodies() this keeps it.
+  void add_external_force(std::uint32_t index, std::uint32_t node, const Vec3& force) {
+    bodies_[index].add_external_force(node, force);
+  }
 
   const SolidStepSettings& settings() const { return settings_; }
   void set_settings(const SolidStepSettings& settings);
 
   /// Advances every solid by h in equal substeps no longer than max_step and every body's
-  /// stable_time_step(). A step that leaves a non-finite node or one faster than max_speed is
-  /// undone and redone with twice the substeps, up to 6 times and within a budget of
-  /// substeps (solid_system.cpp); if none works, the bodies are
+  /// stable_time_step(). A step that leaves a non-finite node, one faster than max_speed, or
+  /// the solids with more energy than they may have (the cloth's health check, applied to all
+  /// the solids together: they trade energy in contact) is undone and redone with twice the
+  /// substeps, up to 6 times and within a budget of substeps (solid_system.cpp); if none
+  /// works, the bodies are
   /// put back where they were, at rest. External forces are cleared afterwards. `yield_point`,
   /// if given, is called after each substep's integration and after its contacts (as in
   /// World::step).
@@ -86,6 +103,23 @@ class SolidSystem {
   /// Runs `substeps` substeps of length h; false as soon as the state is not healthy.
   bool attempt(Real h, int substeps, const Vec3& gravity, std::span<const Collider> colliders,
                Real max_speed, const std::function<void()>& yield_point);
+  /// What a step's energy check compares its end with.
+  struct StepStart {
+    Real energy = 0;    ///< kinetic + elastic, of all the solids
+    bool first = true;  ///< the attempt is the first of the step, not a retry
+    /// the solids were set (added, edited) since the last step, maybe inside each other or a
+    /// collider
+    bool set_now = false;
+  };
+  /// Whether the solids' energy after a step of length h from `start` (the state in saved_)
+  /// stays within what gravity and the external forces could give them, and, on the first
+  /// attempt, within the energy balance; if so, keeps the energies for accept_energy().
+  bool energy_healthy(Real h, const Vec3& gravity, const StepStart& start);
+  /// Kinetic, elastic and gravitational energy of all the solids, J.
+  Real mechanical_energy(const Vec3& gravity) const;
+  /// The solids' kinetic and elastic energy (`kinetic_elastic`, J) plus their weight times
+  /// their size: what the energy balance's tolerance is a fraction of.
+  Real energy_scale(Real kinetic_elastic, const Vec3& gravity) const;
   void substep(Real h, const Vec3& gravity, std::span<const Collider> colliders);
   /// Every position finite and, when `check_speed`, every speed under `max_speed`.
   bool healthy(bool check_speed, Real max_speed) const;
@@ -110,6 +144,16 @@ class SolidSystem {
   StickySubsteps sticky_;
   BodyStepCounts counts_;
   Real size_ = 0;  ///< m, the diagonal of the bodies' bounding box when the last was added
+  Real mass_ = 0;  ///< kg, of all the solids
+  /// the solids' kinetic + elastic energy after the last step, the next step's starting energy
+  /// unless bodies() was handed out in between
+  Real energy_ = 0;
+  bool energy_valid_ = false;
+  EnergyBalance balance_;
+  int window_ = HealthSettings::kMinWindowSteps;  ///< steps of the balance's window
+  /// kept by the check of the last healthy attempt: the work of the external forces, and the
+  /// gravitational energy it left
+  Real work_ = 0, gravitational_ = 0;
 };
 
 }  // namespace felt

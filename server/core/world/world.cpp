@@ -1,6 +1,7 @@
 #include "core/world/world.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "core/math/check.hpp"
 
@@ -8,8 +9,10 @@ namespace felt {
 
 namespace {
 
-SolidStepSettings with_health(SolidStepSettings solid_settings, const HealthSettings& health) {
-  solid_settings.health = health;
+/// The solids judge their health as the world's settings say.
+SolidStepSettings with_health(SolidStepSettings solid_settings, const WorldSettings& world) {
+  solid_settings.health = world.health;
+  solid_settings.max_energy_growth = world.max_energy_growth;
   return solid_settings;
 }
 
@@ -19,7 +22,7 @@ World::World(WorldSettings settings, SolidStepSettings solid_settings)
     : settings_(settings),
       cloths_(ClothStepSettings{settings.max_speed, settings.max_energy_growth,
                                 settings.max_substep_doublings, settings.health}),
-      solids_(with_health(solid_settings, settings.health)) {}
+      solids_(with_health(solid_settings, settings)) {}
 
 namespace {
 
@@ -187,12 +190,14 @@ void World::add_surface_force(BodyId id, std::uint32_t vertex, const Vec3& force
     cloths_.add_external_force(ref->index, vertex, force);
     return;
   }
-  SolidBody* solid_body = solid(id);
-  FELT_CHECK(solid_body != nullptr);
-  const SolidBody::SurfacePoint point = solid_body->surface_point(vertex);
+  const BodyRef* ref = live(id, BodyRef::Kind::kSolid);
+  FELT_CHECK(ref != nullptr);
+  // through the system, not solid(id): a force is no edit, and keeps the health check's energy
+  const SolidBody::SurfacePoint point =
+      std::as_const(solids_).bodies()[ref->index].surface_point(vertex);
   for (int c = 0; c < 4; ++c) {
     if (point.weights[c] != 0)
-      solid_body->add_external_force(point.nodes[c], point.weights[c] * force);
+      solids_.add_external_force(ref->index, point.nodes[c], point.weights[c] * force);
   }
 }
 
@@ -256,7 +261,7 @@ StepReport World::step(const std::function<void()>& yield_point) {
   }
   report.max_substeps = cloth.substeps;
   report.cloth_profile = cloth.profile;
-  if (!solids_.bodies().empty()) {
+  if (!std::as_const(solids_).bodies().empty()) {
     if (yield_point) yield_point();
     const SolidStepStats& solid =
         solids_.step(settings_.time_step, settings_.gravity, step_colliders_, yield_point);
