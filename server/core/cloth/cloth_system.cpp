@@ -6,6 +6,7 @@
 #include "core/math/all_finite.hpp"
 #include "core/math/bounds_of.hpp"
 #include "core/math/check.hpp"
+#include "core/step/internal_motion.hpp"
 #include "core/step/substeps_for.hpp"
 
 namespace felt {
@@ -144,7 +145,7 @@ int ClothSystem::step_checked(std::size_t index, Real t, Real h, std::int64_t re
   if (outcome.rescued) {
     stats_.rescued = true;
     stats_.rescued_bodies.push_back(static_cast<std::uint32_t>(index));
-    // the growth before the rescue cannot be undone: the balance starts over from here
+    take_back_growth(index);
     health_[index].balance.reset(mechanical_energy(body, h), energy_scale(index, energy_[index]));
   } else if (outcome.ok) {
     // healthy() measured the state the step left
@@ -178,6 +179,22 @@ int ClothSystem::step_unchecked(std::size_t index, Real t, Real h,
     stop(index);
   }
   return substeps;
+}
+
+void ClothSystem::take_back_growth(std::size_t index) {
+  ClothBody& body = bodies_[index];
+  const EnergyBalance& balance = health_[index].balance;
+  // healthy() kept the energy and the work of the retried step
+  const Real excess = balance.excess(balance.budget_after(energy_[index] + gravitational_, work_));
+  if (excess == 0) return;
+  const std::vector<Real>& mass = body.model().mass;
+  const InternalMotion motion = internal_motion(
+      body.state().v, body.inv_mass(), [&](std::size_t p) { return mass[p]; },
+      !body.anchors().empty());
+  const Real factor = internal_motion_factor(motion.energy, excess);
+  scale_internal_motion(body.state().v, body.inv_mass(), motion.centre_velocity, factor);
+  energy_[index] -= (1 - factor * factor) * motion.energy;
+  body.integrator().reset();
 }
 
 std::int64_t ClothSystem::affordable_substeps(std::size_t index) const {

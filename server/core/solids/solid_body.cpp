@@ -226,6 +226,10 @@ void SolidBody::restore_step_state(const StepState& state) {
   v_ = state.v;
   external_force_ = state.external_force;
   previous_step_ = state.previous_step;
+  forget_history();
+}
+
+void SolidBody::forget_history() {
   if (integrator_) integrator_->reset();
   integrated_motion_.clear();
 }

@@ -141,6 +141,9 @@ class SolidBody {
   }
   /// Also forgets what the integrator kept from earlier steps.
   void restore_step_state(const StepState& state);
+  /// Has the integrator forget what it kept from earlier steps, after the state was changed
+  /// from outside.
+  void forget_history();
 
   void pin(std::uint32_t n);
   void unpin(std::uint32_t n);

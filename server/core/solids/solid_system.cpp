@@ -8,6 +8,7 @@
 #include "core/math/check.hpp"
 #include "core/solids/solid_collider_contact.hpp"
 #include "core/step/energy_balance.hpp"
+#include "core/step/internal_motion.hpp"
 #include "core/step/substep_rescue.hpp"
 #include "core/step/substeps_for.hpp"
 
@@ -128,6 +129,7 @@ const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
   counts_.substeps = outcome.substeps;
   if (stats_.over_budget) ++counts_.over_budget_steps;
   stats_.rescued = outcome.rescued;
+  if (outcome.rescued) take_back_growth();
   if (outcome.rescued || (outcome.ok && set_now)) {
     // the growth before a rescue cannot be undone: the balance starts over from here, as it
     // does after the first step of solids just set
@@ -276,6 +278,30 @@ bool SolidSystem::energy_healthy(Real h, const Vec3& gravity, const StepStart& s
   gravitational_ = gravitational;
   energy_ = kinetic_elastic;
   return true;
+}
+
+void SolidSystem::take_back_growth() {
+  // energy_healthy() kept the energy and the work of the retried step
+  const Real excess = balance_.excess(balance_.budget_after(energy_ + gravitational_, work_));
+  if (excess == 0) return;
+  // one factor for all the solids, each scaled about its own centre of mass (or, held in
+  // place, about rest)
+  std::vector<InternalMotion> motions;
+  Real internal = 0;
+  for (const SolidBody& body : bodies_) {
+    const Real node_mass = body.material().node_mass;
+    motions.push_back(internal_motion(
+        body.velocities(), body.inv_mass(), [&](std::size_t) { return node_mass; },
+        !body.anchors().empty()));
+    internal += motions.back().energy;
+  }
+  const Real factor = internal_motion_factor(internal, excess);
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    scale_internal_motion(bodies_[b].velocities(), bodies_[b].inv_mass(),
+                          motions[b].centre_velocity, factor);
+    bodies_[b].forget_history();
+  }
+  energy_ -= (1 - factor * factor) * internal;
 }
 
 Real SolidSystem::mechanical_energy(const Vec3& gravity) const {

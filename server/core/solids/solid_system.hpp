@@ -115,6 +115,9 @@ class SolidSystem {
   /// stays within what gravity and the external forces could give them, and, on the first
   /// attempt, within the energy balance; if so, keeps the energies for accept_energy().
   bool energy_healthy(Real h, const Vec3& gravity, const StepStart& start);
+  /// After a rescue: takes the growth of the balance since it started out of the solids'
+  /// motion about their centres of mass, as ClothSystem::take_back_growth does.
+  void take_back_growth();
   /// Kinetic, elastic and gravitational energy of all the solids, J.
   Real mechanical_energy(const Vec3& gravity) const;
   /// The solids' kinetic and elastic energy (`kinetic_elastic`, J) plus their weight times

@@ -66,6 +66,10 @@ class EnergyBalance {
     return lowest - lowest_ <= tolerance * judged;
   }
 
+  /// How far budget `budget` lies above the lowest since the balance started, J (0 below it):
+  /// after a rescue, the growth the step before it could not undo.
+  Real excess(Real budget) const { return std::max(Real{0}, budget - lowest_); }
+
   /// Takes a healthy step (as judged by within with the same arguments).
   void accept(Real energy, Real work, Real scale, int window) {
     work_ += work;

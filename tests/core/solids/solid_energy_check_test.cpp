@@ -68,13 +68,13 @@ VibrationRun free_vibration(Real energy_tolerance) {
   return run;
 }
 
-// Each rescue accepts the growth before it (a window sees growth only once it is there) and
-// relaxes its substeps after a second, so the energy still rises, by steps: 4 times in 3 s
-// where the unchecked run grows 25 times.
+// Each rescue takes the growth the window saw out of the motion (0.23 J back to 0.14 J at the
+// first), but the substeps it doubled relax after a second and the growth starts again: at
+// most 3.2 times the start in 3 s, where the unchecked run grows 25 times.
 TEST(SolidEnergyCheck, SlowGrowthIsCaughtAndReported) {
   const VibrationRun checked = free_vibration(HealthSettings{}.energy_tolerance);
   EXPECT_GT(checked.rescued_steps, 0u);
-  EXPECT_LT(checked.largest_energy, 5 * checked.start_energy)
+  EXPECT_LT(checked.largest_energy, 4 * checked.start_energy)
       << "started with " << checked.start_energy << " J";
   // without the check the same run grows unseen
   const VibrationRun unchecked = free_vibration(std::numeric_limits<Real>::infinity());
