@@ -80,7 +80,7 @@ const ClothStepStats& ClothSystem::step(Real t, Real h, std::span<const Collider
     energy_.resize(bodies_.size());
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
       energy_[b] = bodies_[b].kinetic_energy() + bodies_[b].elastic_energy_in_steps_of(h);
-      health_[b].balance.reset(mechanical_energy(bodies_[b], h), energy_scale(b, energy_[b]));
+      health_[b].balance.reset(mechanical_energy(bodies_[b], h));
     }
   }
   const auto relax_steps = static_cast<std::int64_t>(std::ceil(settings_.health.relax_after / h));
@@ -146,7 +146,7 @@ int ClothSystem::step_checked(std::size_t index, Real t, Real h, std::int64_t re
     stats_.rescued = true;
     stats_.rescued_bodies.push_back(static_cast<std::uint32_t>(index));
     take_back_growth(index);
-    health_[index].balance.reset(mechanical_energy(body, h), energy_scale(index, energy_[index]));
+    health_[index].balance.reset(mechanical_energy(body, h));
   } else if (outcome.ok) {
     // healthy() measured the state the step left
     health_[index].balance.accept(energy_[index] + gravitational_, work_,
@@ -155,7 +155,7 @@ int ClothSystem::step_checked(std::size_t index, Real t, Real h, std::int64_t re
     body.state().x = backup_.x;
     stop(index);
     energy_[index] = body.elastic_energy_in_steps_of(h);
-    health_[index].balance.reset(mechanical_energy(body, h), energy_scale(index, energy_[index]));
+    health_[index].balance.reset(mechanical_energy(body, h));
   }
   return outcome.substeps;
 }
@@ -235,16 +235,16 @@ void ClothSystem::advance(std::size_t index, Real t, Real h, int substeps,
   for (int s = 0; s < substeps; ++s) {
     // an even share of what the budget has left: the attempt, started only when its substeps
     // fit, never spends beyond it
-    const std::int64_t share = (settings_.health.step_budget - spent_) / (substeps - s);
-    integrator.limit_internal_steps(static_cast<int>(std::max<std::int64_t>(1, share)));
+    const int share = static_cast<int>(
+        std::max<std::int64_t>(1, (settings_.health.step_budget - spent_) / (substeps - s)));
+    integrator.limit_internal_steps(share);
     timed(profile, StepStage::kIntegration,
           [&] { integrator.step(body, body.state(), t + s * dt, dt); });
     spent_ += integrator.last_internal_steps();
     capped_ = capped_ || integrator.last_step_capped();
     if (yield_point) yield_point();
     timed(profile, StepStage::kStretchLimit, [&] {
-      limiters_[index].apply(body.model(), body.inv_mass(), body.params().stretch, dt,
-                             body.state());
+      if (body.params().stretch.enabled) limit_stretch(index, dt, share);
     });
     timed(profile, StepStage::kColliders, [&] {
       limiters_[index].set_pushed_by_colliders(resolve_collisions(colliders, body.inv_mass(),
@@ -261,6 +261,25 @@ void ClothSystem::advance(std::size_t index, Real t, Real h, int substeps,
           [&] { apply_constraints(body.constraints(), body.state()); });
     if (yield_point) yield_point();
   }
+}
+
+void ClothSystem::limit_stretch(std::size_t index, Real dt, int share) {
+  ClothBody& body = bodies_[index];
+  StretchLimit limit = body.params().stretch;
+  limit.iterations = std::min(limit.iterations, share);
+  limit.projection_iterations = std::min(limit.projection_iterations, share);
+  const StretchLimitStats done =
+      limiters_[index].apply(body.model(), body.inv_mass(), limit, dt, body.state());
+  // the positions' last part (the projection after the sweeps, if they left a spring beyond
+  // its bound) used all the share cut it to: stopped unconverged (the velocities' sweeps fall
+  // back on a direct solve)
+  const StretchLimit& asked = body.params().stretch;
+  const bool cut =
+      done.position_projections > 0
+          ? limit.projection_iterations < asked.projection_iterations &&
+                done.position_projections == limit.projection_iterations
+          : limit.iterations < asked.iterations && done.position_sweeps == limit.iterations;
+  capped_ = capped_ || cut;
 }
 
 bool ClothSystem::healthy(std::size_t index, Real t, Real h, StepStart& start) {

@@ -124,6 +124,11 @@ class ClothSystem {
   /// within its share of what the step budget has left.
   void advance(std::size_t index, Real t, Real h, int substeps, std::span<const Collider> colliders,
                const std::function<void()>& yield_point);
+  /// Stretch limiting of cloth `index` after a substep of length dt, its sweeps and projection
+  /// steps each held to `share`, the substep's share of what the step budget has left (as its
+  /// integrator's internal steps); a part cut short and unconverged counts as reaching the
+  /// budget.
+  void limit_stretch(std::size_t index, Real dt, int share);
   /// The most substeps the step budget affords cloth `index`, each of at least its integrator's
   /// least internal steps (xpbd's substeps).
   std::int64_t affordable_substeps(std::size_t index) const;

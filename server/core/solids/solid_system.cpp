@@ -133,7 +133,7 @@ const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
   if (outcome.rescued || (outcome.ok && set_now)) {
     // the growth before a rescue cannot be undone: the balance starts over from here, as it
     // does after the first step of solids just set
-    balance_.reset(mechanical_energy(gravity), energy_scale(energy_, gravity));
+    balance_.reset(mechanical_energy(gravity));
   } else if (outcome.ok) {
     // energy_healthy measured the state the step left
     balance_.accept(energy_ + gravitational_, work_, energy_scale(energy_, gravity), window_);
@@ -142,7 +142,7 @@ const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
     stop();
     energy_ = 0;
     for (const SolidBody& body : bodies_) energy_ += body.elastic_energy();
-    balance_.reset(mechanical_energy(gravity), energy_scale(energy_, gravity));
+    balance_.reset(mechanical_energy(gravity));
   }
   energy_valid_ = true;
   stats_.substeps = outcome.substeps;

@@ -8,7 +8,6 @@
 // body's energy scale, is growth, whatever its rate per step.
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 
 #include "core/math/types.hpp"
@@ -27,21 +26,13 @@ class EnergyBalance {
   /// ωh = 2.87, 1.6 % above its limit: 10²¹ J after 1 s, no step flagged). Capped at twice the
   /// last window's scale, growth by more than a factor 2 a window is flagged.
   static constexpr Real kScaleGrowthPerWindow = 2;
-  /// How far one step's budget may lie above the lowest since the balance started, in
-  /// tolerances of the (capped) scale, before its window closes: 2 scales at the default
-  /// tolerance of 1/4. A symplectic scheme's energy swings by about ωh/2 of its vibration energy
-  /// (under 1.8 of it within the stable steps' margin); growth a window sees only at its end
-  /// (explicit Euler 1.8 times a step: 10⁵ times its energy within two windows) is caught
-  /// within a few steps.
-  static constexpr Real kStepTolerances = 8;
 
-  /// Starts over from mechanical energy `energy` and energy scale `scale` (as within()): no
-  /// work done yet, no window open, the first window's scale capped from `scale`.
-  void reset(Real energy, Real scale) {
+  /// Starts over from mechanical energy `energy`: no work done yet, no window open.
+  void reset(Real energy) {
     lowest_ = energy;
     work_ = 0;
     window_ = {};
-    closed_scale_ = scale;
+    closed_scale_ = std::numeric_limits<Real>::infinity();
   }
 
   /// B after a step that leaves mechanical energy `energy` and in which applied forces did
@@ -54,15 +45,12 @@ class EnergyBalance {
   /// lowest budget before it. The scale is the body's kinetic and elastic energy plus its weight
   /// times its size (Mgℓ, so that a body at rest has one). Judging a window's lowest value, not
   /// each step's, lets a symplectic scheme's energy swing within a period (±ωh/2 of it) without
-  /// counting as growth. Each step, the budget may lie at most kStepTolerances times as far
-  /// above the lowest before it. An infinite tolerance turns both checks off.
+  /// counting as growth.
   bool within(Real budget, Real scale, Real tolerance, int window) const {
-    if (std::isinf(tolerance)) return true;
-    const Real judged =
-        std::min(std::max(window_.scale, scale), kScaleGrowthPerWindow * closed_scale_);
-    if (!(budget - lowest_ <= kStepTolerances * tolerance * judged)) return false;
     if (window_.steps + 1 < window) return true;
     const Real lowest = std::min(window_.lowest, budget);
+    const Real judged =
+        std::min(std::max(window_.scale, scale), kScaleGrowthPerWindow * closed_scale_);
     return lowest - lowest_ <= tolerance * judged;
   }
 
@@ -90,7 +78,7 @@ class EnergyBalance {
   };
   Real lowest_ = 0;  ///< the lowest B of the closed windows since reset
   Real work_ = 0;    ///< applied work since reset
-  /// the largest scale of the last closed window, or the scale at reset before the first closes
+  /// the largest scale of the last closed window; none (infinite) before the first closes
   Real closed_scale_ = std::numeric_limits<Real>::infinity();
   Window window_;
 };

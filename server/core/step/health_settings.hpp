@@ -35,8 +35,10 @@ struct HealthSettings {
   bool auto_substeps = true;
   /// The most work one step of a body may do: substeps, over every attempt of the step
   /// together (the first, the stable step's, the rescue's retries), each of adaptive_rk's
-  /// internal steps counting as one. A step that reaches it is reported and goes on with what
-  /// it can afford (docs/scenes.md "health").
+  /// internal steps counting as one. Each substep's integrator call and each part of its
+  /// stretch limiting (sweeps, projection steps) get at most an even share of what is left.
+  /// A step that reaches it is reported and goes on with what it can afford (docs/scenes.md
+  /// "health").
   int step_budget = kDefaultStepBudget;
   static constexpr int kDefaultStepBudget = 1000;
 };

@@ -1,6 +1,6 @@
-// The energy balance against budgets of known shape: steady exponential growth is flagged within
-// a few steps of a reset, before its first window closes; a bounded swing of the size a
-// symplectic scheme shows is never flagged; an infinite tolerance flags nothing.
+// The energy balance against budgets of known shape: slow steady growth is flagged by its
+// windows; a bounded swing of the size a symplectic scheme shows is never flagged, nor is the
+// work of applied forces; an infinite tolerance flags nothing.
 
 #include <cmath>
 #include <numbers>
@@ -19,7 +19,7 @@ constexpr int kWindow = 25;        // 0.25 s of 10 ms steps
 /// rise, as a body's kinetic and elastic energy rises with it) is first flagged, or -1.
 int first_flagged_step(Real factor, Real tolerance, int steps) {
   EnergyBalance balance;
-  balance.reset(1, 1);
+  balance.reset(1);
   Real energy = 1;
   for (int s = 1; s <= steps; ++s) {
     energy *= factor;
@@ -28,16 +28,6 @@ int first_flagged_step(Real factor, Real tolerance, int steps) {
     balance.accept(energy, 0, scale, kWindow);
   }
   return -1;
-}
-
-TEST(EnergyBalance, SteadyGrowthIsFlaggedBeforeItsFirstWindowCloses) {
-  // 1.8 times a step: explicit Euler on an undamped solid at 352 substeps. Judged only at the
-  // ends of windows it grew 10⁵ times before the second closed.
-  const int flagged = first_flagged_step(1.8, kTolerance, 4 * kWindow);
-  ASSERT_GT(flagged, 0);
-  EXPECT_LT(flagged, kWindow / 4);
-  // the budget rose at most 2 scales of the reset plus one step's growth
-  EXPECT_LE(std::pow(1.8, flagged), 1 + 2 * 2 * 1.8);
 }
 
 TEST(EnergyBalance, SlowGrowthIsFlaggedByItsWindows) {
@@ -51,7 +41,7 @@ TEST(EnergyBalance, ASwingOfASymplecticSchemeIsNeverFlagged) {
   // energy swinging by 1.5 times its size (ωh = 1.6, the edge of the stable steps' margin)
   // over a period of 7 steps, for 20 windows, without growing
   EnergyBalance balance;
-  balance.reset(1, 1);
+  balance.reset(1);
   for (int s = 1; s <= 20 * kWindow; ++s) {
     const Real energy = 1 + 1.5 * std::pow(std::sin(std::numbers::pi * s / 7.0), 2);
     ASSERT_TRUE(balance.within(balance.budget_after(energy, 0), 1, kTolerance, kWindow))
@@ -63,7 +53,7 @@ TEST(EnergyBalance, ASwingOfASymplecticSchemeIsNeverFlagged) {
 TEST(EnergyBalance, WorkOfAppliedForcesIsNotGrowth) {
   // a push giving 0.5 J a step is what the energy rises by
   EnergyBalance balance;
-  balance.reset(1, 1);
+  balance.reset(1);
   Real energy = 1;
   for (int s = 1; s <= 4 * kWindow; ++s) {
     energy += 0.5;

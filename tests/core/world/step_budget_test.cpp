@@ -1,7 +1,7 @@
 // Bounded cost (issue 27): an absurd adaptive step, and implicit Euler's and projective
 // dynamics' iterations, end within the world's step budget, counted as work (internal steps),
-// and are reported; a step whose retries the budget cannot afford ends as unrecoverable instead
-// of trying them.
+// and are reported; stretch limiting is held to each substep's share of it; a step whose retries
+// the budget cannot afford ends as unrecoverable instead of trying them.
 
 #include <gtest/gtest.h>
 
@@ -141,6 +141,34 @@ TEST(StepBudget, XpbdsSubstepsAreAffordedWhole) {
     EXPECT_LE(counter.take_work(), 100) << "step " << n;
     EXPECT_EQ(world.step_counts(id).substeps, 2);
   }
+}
+
+TEST(StepBudget, StretchLimitingIsHeldToTheSubstepsShareAndReportedWhenCut) {
+  // a cloth limited to 1 % strain with 100 sweeps and 20 projection steps a pass, set 20 %
+  // stretched, in 10 substeps a step (its own max_step): a budget of 20 leaves each substep's
+  // limiting 2 of each, too few to bring it back, and the step is reported; with a
+  // budget that affords them all, the same step is not
+  const auto reported = [](int budget) {
+    World world(WorldSettings{.gravity = Vec3(0, -9.81, 0),
+                              .time_step = 1e-2,
+                              .health = {.auto_substeps = false, .step_budget = budget}});
+    GridClothSpec spec;
+    spec.nx = spec.ny = 8;
+    spec.total_mass = 10;
+    ClothParams params;
+    params.spring(SpringKind::kStructural) = {true, 100, 0.1};
+    params.stretch = {
+        .enabled = true, .max_strain = 0.01, .iterations = 100, .projection_iterations = 20};
+    ClothBody body("c", std::make_shared<const ClothModel>(make_grid_cloth(spec)), params,
+                   make_integrator("symplectic_euler"));
+    for (std::uint32_t p : grid_pin_indices(spec, GridPinPreset::kTopCorners)) body.pin(p);
+    body.set_max_step(1e-3);
+    for (Vec3& x : body.state().x) x *= 1.2;
+    world.add_body(std::move(body));
+    return world.step().flags.has(StepFlag::kOverBudget);
+  };
+  EXPECT_TRUE(reported(20));
+  EXPECT_FALSE(reported(1'000'000));
 }
 
 }  // namespace
