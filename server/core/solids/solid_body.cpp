@@ -350,14 +350,6 @@ Real SolidBody::kinetic_energy() const {
   return 0.5 * material_.node_mass * sum;
 }
 
-Real SolidBody::integrated_kinetic_energy(Real h) const {
-  // as finish_step: the integrator's velocities, or the backward difference
-  if (integrator_ && integrated_motion_.size() == x_.size()) return kinetic_energy();
-  Real sum = 0;
-  for (std::size_t n = 0; n < x_.size(); ++n) sum += (x_[n] - x_prev_[n]).squaredNorm();
-  return 0.5 * material_.node_mass * sum / (h * h);
-}
-
 Real SolidBody::gravitational_energy(const Vec3& gravity) const {
   Real sum = 0;
   for (const Vec3& x : x_) sum -= gravity.dot(x);

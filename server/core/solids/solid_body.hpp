@@ -203,9 +203,6 @@ class SolidBody {
   const Eigen::SparseMatrix<Real>* rest_stiffness() const;
 
   Real kinetic_energy() const;
-  /// The kinetic energy finish_step(h) would leave if nothing moved the nodes after advance(h),
-  /// J: that of the motion the step integrated, before contact changes it.
-  Real integrated_kinetic_energy(Real h) const;
   /// The model's elastic energy plus ½ k |target − p|² over the anchors, J.
   Real elastic_energy() const;
   /// −Σ m g·x over the nodes, J: zero at the origin, so only its changes mean anything.

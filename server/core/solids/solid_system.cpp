@@ -132,8 +132,9 @@ const SolidStepStats& SolidSystem::step(Real h, const Vec3& gravity,
   if (outcome.rescued) take_back_growth();
   if (outcome.rescued || (outcome.ok && set_now)) {
     // the growth before a rescue cannot be undone: the balance starts over from here, as it
-    // does after the first step of solids just set
-    balance_.reset(mechanical_energy(gravity));
+    // does after the first step of solids just set (energy_healthy and take_back_growth kept
+    // the energies the step left)
+    balance_.reset(energy_ + gravitational_);
   } else if (outcome.ok) {
     // energy_healthy measured the state the step left
     balance_.accept(energy_ + gravitational_, work_, energy_scale(energy_, gravity), window_);
@@ -237,12 +238,15 @@ bool SolidSystem::energy_healthy(Real h, const Vec3& gravity, const StepStart& s
   // the work of the external forces alone (gravity's is in the mechanical energy): exact, as
   // they are constant over the step
   Real applied_work = 0;
+  // SolidBody::kinetic_energy and gravitational_energy, summed in this pass
   Real kinetic_elastic = 0, gravitational = 0;
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     const SolidBody& body = bodies_[b];
     const SolidBody::StepState& before = saved_[b];
     const Real mass = body.material().node_mass;
     for (std::size_t n = 0; n < body.node_count(); ++n) {
+      kinetic_elastic += 0.5 * mass * body.velocities()[n].squaredNorm();
+      gravitational -= mass * gravity.dot(body.positions()[n]);
       const Vec3 displacement = body.positions()[n] - before.x[n];
       const Vec3& external = before.external_force[n];
       const Vec3 force = mass * gravity + external;
@@ -250,8 +254,7 @@ bool SolidSystem::energy_healthy(Real h, const Vec3& gravity, const StepStart& s
       work_by_velocity += force.dot(0.5 * h * (body.velocities()[n] + before.v[n]));
       applied_work += external.dot(displacement);
     }
-    kinetic_elastic += body.kinetic_energy() + body.elastic_energy();
-    gravitational += body.gravitational_energy(gravity);
+    kinetic_elastic += body.elastic_energy();
   }
   const Real work = std::max({work_by_displacement, work_by_velocity, Real{0}});
   // Contact is resolved by moving nodes out of each other and the colliders, which gives a
@@ -260,6 +263,7 @@ bool SolidSystem::energy_healthy(Real h, const Vec3& gravity, const StepStart& s
   // 600 J). The first step after the solids were set is judged by its speed only, and the
   // balance starts after it.
   if (start.set_now) {
+    gravitational_ = gravitational;
     energy_ = kinetic_elastic;
     return true;
   }
